@@ -1,0 +1,116 @@
+// Kiosk configuration loading and validation with toml++ (see kiosk_config.h).
+#include "kiosk/kiosk_config.h"
+
+#include <toml++/toml.h>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <vector>
+
+namespace sas::kiosk {
+namespace {
+
+std::string Where(const std::string& source, const toml::source_region& region,
+                  const std::string& key) {
+  return source + ":" + std::to_string(region.begin.line) + ": " + key + ": ";
+}
+
+// One accepted key: where it lives and how to apply it. Keeping the schema as data means the
+// validator and the README's key list cannot drift apart silently.
+struct KeySpec {
+  const char* table;
+  const char* key;
+  std::function<void(const toml::node&, KioskConfig&, const std::string& where)> apply;
+};
+
+auto Text(std::string KioskConfig::*member) {
+  return [member](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
+    if (value->empty()) throw ConfigError(where + "must not be empty");
+    config.*member = *value;
+  };
+}
+
+auto Integer(int KioskConfig::*member, int min, int max) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    if (!node.is_integer()) throw ConfigError(where + "expected an integer");
+    const int64_t value = *node.value<int64_t>();
+    if (value < min || value > max) {
+      throw ConfigError(where + std::to_string(value) + " is out of range [" + std::to_string(min) +
+                        ", " + std::to_string(max) + "]");
+    }
+    config.*member = static_cast<int>(value);
+  };
+}
+
+auto Real(double KioskConfig::*member, double min, double max) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    if (!node.is_number()) throw ConfigError(where + "expected a number");
+    const double value = *node.value<double>();
+    if (!std::isfinite(value)) throw ConfigError(where + "must be a finite number");
+    if (value < min || value > max) {
+      std::ostringstream message;
+      message << where << value << " is out of range [" << min << ", " << max << "]";
+      throw ConfigError(message.str());
+    }
+    config.*member = value;
+  };
+}
+
+const std::vector<KeySpec>& Schema() {
+  static const std::vector<KeySpec> schema = {
+      {"audio", "output_device", Text(&KioskConfig::output_device)},
+      {"audio", "input_device", Text(&KioskConfig::input_device)},
+      {"audio", "sample_rate_hz", Integer(&KioskConfig::sample_rate_hz, 8000, 192000)},
+      {"audio", "buffer_frames", Integer(&KioskConfig::buffer_frames, 16, 4096)},
+      {"gains", "sound_gain_db", Real(&KioskConfig::sound_gain_db, -60.0, 40.0)},
+      {"gains", "haptic_gain_db", Real(&KioskConfig::haptic_gain_db, -60.0, 40.0)},
+      {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},
+      {"session", "default_texture", Text(&KioskConfig::default_texture)},
+  };
+  return schema;
+}
+
+}  // namespace
+
+KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_name) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& error) {
+    throw ConfigError(source_name + ":" + std::to_string(error.source().begin.line) +
+                      ": syntax error: " + std::string(error.description()));
+  }
+  KioskConfig config;  // filled on a copy: a bad file changes nothing
+  for (const auto& [table_key, table_node] : root) {
+    const std::string table_name(table_key.str());
+    const auto* table = table_node.as_table();
+    if (table == nullptr) {
+      throw ConfigError(Where(source_name, table_node.source(), table_name) +
+                        "unknown top-level key (expected a [table])");
+    }
+    for (const auto& [key, node] : *table) {
+      const std::string dotted = table_name + "." + std::string(key.str());
+      const std::string where = Where(source_name, node.source(), dotted);
+      const KeySpec* spec = nullptr;
+      for (const auto& candidate : Schema()) {
+        if (table_name == candidate.table && key.str() == candidate.key) spec = &candidate;
+      }
+      if (spec == nullptr) throw ConfigError(where + "unknown key");
+      spec->apply(node, config, where);
+    }
+  }
+  return config;
+}
+
+KioskConfig LoadKioskConfig(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw ConfigError(path + ": cannot open configuration file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return ParseKioskConfig(text.str(), path);
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,35 @@
+#pragma once
+// The kiosk's one configuration file (/etc/sketch-a-scratch/kiosk.toml on the box). Every key is
+// optional and has a built-in default; a key we do not know, a wrong type or a value out of range
+// is an error naming the file, line and key, and nothing of a bad file is applied.
+
+#include <stdexcept>
+#include <string>
+
+namespace sas::kiosk {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct KioskConfig {
+  // [audio]
+  std::string output_device = "default";  // PortAudio device name (ALSA name on the box)
+  std::string input_device = "default";
+  int sample_rate_hz = 48000;
+  int buffer_frames = 128;
+  // [gains] — deliberately high for a loud room; the output limiters keep samples in [-1, 1].
+  double sound_gain_db = 12.0;
+  double haptic_gain_db = 6.0;
+  // [session]
+  double idle_timeout_s = 60.0;
+  std::string default_texture = "wooden_board";
+};
+
+// Parses `path`. Throws ConfigError ("<file>:<line>: <key>: <what>") on any problem.
+KioskConfig LoadKioskConfig(const std::string& path);
+// Same, from text already in memory; `source_name` is used in messages.
+KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_name);
+
+}  // namespace sas::kiosk

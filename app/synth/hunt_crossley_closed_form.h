@@ -1,0 +1,25 @@
+#pragma once
+// Closed-form results for a point mass m hitting a rigid wall through a Hunt–Crossley contact
+// f = -k x^α - λ x^α ẋ (x > 0). Used as test oracles and by the `impact` calibration command.
+// Source: ../shared/reference/hunt-crossley.md; phase-plane trajectory from Avanzini & Rocchesso,
+// "Modeling collision sounds: non-linear contact force", DAFx 2001. μ = λ / k.
+
+namespace sas::synth {
+
+struct ImpactClosedForm {
+  double restitution = 0.0;        // e = |v_out| / v_in, depends only on μ·v_in
+  double exit_speed_mps = 0.0;     // |v_out|
+  double max_compression_m = 0.0;  // x at v = 0
+};
+
+// Coefficient of restitution for u_in = μ·v_in >= 0. Solves u_out - ln(1 + u_out) = u_in -
+// ln(1 + u_in) on u_out ∈ (-1, 0) with a bracketed Newton iteration; avoids Lambert W near its
+// branch point, where it is ill-conditioned.
+double HuntCrossleyRestitution(double mu_times_v_in);
+
+// Maximum compression for mass_kg, stiffness k (N/m^α), μ (s/m), shape α, entry speed v_in > 0.
+double HuntCrossleyMaxCompression(double mass_kg, double k, double mu, double alpha, double v_in);
+
+ImpactClosedForm HuntCrossleyImpact(double mass_kg, double k, double mu, double alpha, double v_in);
+
+}  // namespace sas::synth

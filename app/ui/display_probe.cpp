@@ -1,0 +1,40 @@
+// Display probing through SDL2 (see display_probe.h).
+#include "ui/display_probe.h"
+
+#include <SDL.h>
+
+namespace sas::ui {
+
+DisplayInfo ProbeDisplay() {
+  DisplayInfo info;
+  if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
+    info.problem = SDL_GetError();
+    return info;
+  }
+  if (const char* driver = SDL_GetCurrentVideoDriver()) info.driver = driver;
+  // SDL 2.26 falls back to its virtual `offscreen` driver when x11, wayland and KMSDRM all fail.
+  // That is no screen a visitor can see: count it only when asked for by name (render tests).
+  const char* requested = SDL_getenv("SDL_VIDEODRIVER");
+  const bool virtual_driver = info.driver == "offscreen" || info.driver == "dummy";
+  if (virtual_driver && (requested == nullptr || info.driver != requested)) {
+    info.problem =
+        "no x11, wayland or KMSDRM display (only SDL's virtual '" + info.driver + "' driver)";
+    SDL_QuitSubSystem(SDL_INIT_VIDEO);
+    return info;
+  }
+  SDL_DisplayMode mode{};
+  if (SDL_GetNumVideoDisplays() < 1) {
+    info.problem = "video driver '" + info.driver + "' reports no display";
+  } else if (SDL_GetDesktopDisplayMode(0, &mode) != 0) {
+    info.problem = SDL_GetError();
+  } else {
+    info.available = true;
+    info.width_px = mode.w;
+    info.height_px = mode.h;
+    info.refresh_hz = mode.refresh_rate;
+  }
+  SDL_QuitSubSystem(SDL_INIT_VIDEO);
+  return info;
+}
+
+}  // namespace sas::ui

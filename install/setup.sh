@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for Sketch-a-Scratch and builds it; idempotent.
+#   install/setup.sh run    install build + runtime packages, build, run the main job
+#   install/setup.sh test   install everything the tests need, build, run the test suite
+#                           (normal build, then the ASan/UBSan build)
+#   install/setup.sh build  install build + runtime packages and build only
+# Runs apt-get as root (directly, or through sudo when started as a normal user).
+set -euo pipefail
+
+mode="${1:-build}"
+shift || true
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+die() { echo "setup.sh: $*" >&2; exit 1; }
+
+case "$mode" in
+  run|test|build) ;;
+  *) die "unknown mode '$mode' (expected run, test or build)" ;;
+esac
+
+if ! command -v apt-get >/dev/null 2>&1 || [ ! -r /etc/debian_version ]; then
+  die "this script needs Debian 12 (bookworm) with apt-get; install the packages in install/packages.txt by hand elsewhere"
+fi
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"
+  elif command -v sudo >/dev/null 2>&1; then sudo "$@"
+  else die "need root (or sudo) to install packages"; fi
+}
+
+groups="build runtime"
+[ "$mode" = test ] && groups="build runtime test"
+packages=()
+while read -r group package; do
+  case "$group" in ''|'#'*) continue ;; esac
+  for wanted in $groups; do
+    [ "$group" = "$wanted" ] && packages+=("$package")
+  done
+done < "$repo/install/packages.txt"
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup.sh: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+else
+  echo "setup.sh: all ${#packages[@]} Debian packages already installed"
+fi
+
+build() {  # build <dir> <cmake args...>
+  local dir="$1"; shift
+  cmake -S "$repo" -B "$repo/$dir" -DCMAKE_BUILD_TYPE="${SAS_BUILD_TYPE:-RelWithDebInfo}" "$@" >/dev/null
+  cmake --build "$repo/$dir" -j "$jobs"
+}
+
+build build
+case "$mode" in
+  build) echo "setup.sh: built $repo/build/app/sketch-a-scratch" ;;
+  run)
+    echo "setup.sh: running $repo/build/app/sketch-a-scratch $*"
+    exec "$repo/build/app/sketch-a-scratch" "$@"
+    ;;
+  test)
+    (cd "$repo/build" && ctest --output-on-failure -j "$jobs")
+    build build-asan -DCMAKE_BUILD_TYPE=Debug -DSAS_SANITIZE=ON -DSAS_BUILD_BENCH=OFF
+    (cd "$repo/build-asan" && \
+      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      ctest --output-on-failure -j "$jobs")
+    ;;
+esac

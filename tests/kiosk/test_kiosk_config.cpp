@@ -1,0 +1,50 @@
+// Configuration validation: every problem names file, line and key; nothing half-applied.
+#include <catch2/catch.hpp>
+
+#include "kiosk/kiosk_config.h"
+#include "support/temp_dir.h"
+
+using sas::kiosk::ConfigError;
+using sas::kiosk::KioskConfig;
+using sas::kiosk::LoadKioskConfig;
+using sas::kiosk::ParseKioskConfig;
+
+TEST_CASE("an empty configuration gives the built-in defaults", "[kiosk]") {
+  const KioskConfig config = ParseKioskConfig("", "empty.toml");
+  const KioskConfig defaults;
+  CHECK(config.sample_rate_hz == defaults.sample_rate_hz);
+  CHECK(config.buffer_frames == 128);
+  CHECK(config.idle_timeout_s == 60.0);
+}
+
+TEST_CASE("values in a configuration file are applied", "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("kiosk.toml",
+                              "[audio]\noutput_device = \"hw:CARD=Speaker\"\nbuffer_frames = 256\n"
+                              "[gains]\nsound_gain_db = 18.5\n[session]\nidle_timeout_s = 90\n");
+  const KioskConfig config = LoadKioskConfig(path);
+  CHECK(config.output_device == "hw:CARD=Speaker");
+  CHECK(config.buffer_frames == 256);
+  CHECK(config.sound_gain_db == 18.5);
+  CHECK(config.idle_timeout_s == 90.0);
+}
+
+TEST_CASE("an unknown key is an error naming file, line and key", "[kiosk]") {
+  const std::string text = "[audio]\nbuffer_frames = 128\n\n[gains]\nsound_gian_db = 3\n";
+  CHECK_THROWS_WITH(ParseKioskConfig(text, "k.toml"), Catch::Contains("k.toml:5") &&
+                                                          Catch::Contains("gains.sound_gian_db") &&
+                                                          Catch::Contains("unknown key"));
+}
+
+TEST_CASE("wrong types, out-of-range values and syntax errors are reported with their line",
+          "[kiosk]") {
+  CHECK_THROWS_WITH(ParseKioskConfig("[audio]\nbuffer_frames = \"big\"\n", "k.toml"),
+                    Catch::Contains("k.toml:2") && Catch::Contains("expected an integer"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[session]\nidle_timeout_s = 1.0\n", "k.toml"),
+                    Catch::Contains("k.toml:2") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nsound_gain_db = nan\n", "k.toml"),
+                    Catch::Contains("finite"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains\nsound_gain_db = 1\n", "k.toml"),
+                    Catch::Contains("k.toml:1") && Catch::Contains("syntax error"));
+  CHECK_THROWS_AS(LoadKioskConfig("/nonexistent/kiosk.toml"), ConfigError);
+}
