@@ -1,0 +1,83 @@
+#pragma once
+// Plain parameter structs for one material (the resonating surface) and the probe touching it,
+// filled by the control side (material files, texture files, configuration) and handed to the
+// synth by const&. SI units throughout unless a name says otherwise (DESIGN.md §3, §5.3).
+//
+// Sources: Hunt–Crossley impact and modal resonator as in the paper §4 and the Sound Design
+// Toolkit; elasto-plastic friction after Dupont et al. 2002 / Avanzini et al. 2005
+// (../shared/reference/friction.md).
+
+#include <array>
+#include <cstdint>
+
+namespace sas::synth {
+
+inline constexpr int kMaxModes = 64;
+
+// One mode of the resonating object.
+struct ModeParams {
+  double frequency_hz = 440.0;
+  double decay_s = 0.5;     // time for the mode's amplitude to fall by 1/e... see resonator docs
+  double mass_kg = 0.01;    // modal mass seen at the contact point
+  double gain = 1.0;        // pickup gain: how much of the mode reaches the output
+};
+
+struct ResonatorParams {
+  int mode_count = 0;
+  std::array<ModeParams, kMaxModes> modes{};
+};
+
+// Numerical scheme for the probe/contact ODE (issue 4 measures them; DESIGN.md §3).
+enum class ContactScheme : std::uint8_t {
+  kExplicitPassive,    // explicit force with an energy (passivity) clamp, as in the SDT
+  kTrapezoidNewton,    // trapezoidal / K-method with a safeguarded Newton solve
+  kDiscreteGradient,   // energy-conserving discrete gradient (Chatziioannou & van Walstijn)
+  kEnergyQuadratised,  // non-iterative IEQ/SAV (Ducceschi & Bilbao)
+};
+
+// Hunt–Crossley: f = -k x^α - λ x^α ẋ for x > 0, with μ = λ / k.
+struct ImpactParams {
+  bool enabled = true;
+  double stiffness = 1e7;          // k, N/m^α
+  double dissipation_s_per_m = 0.5;  // μ = λ / k
+  double shape_alpha = 1.5;        // α
+  ContactScheme scheme = ContactScheme::kTrapezoidNewton;
+  int oversample = 0;              // contact sub-steps per sample; 0 = choose from N_c
+};
+
+// Elasto-plastic bristle friction: f = σ0 z + σ1 ż + σ2 v + σ3 w.
+struct FrictionParams {
+  bool enabled = true;
+  double bristle_stiffness = 1000.0;       // σ0, N/m
+  double bristle_damping = 10.0;           // σ1, N s/m
+  double viscous_friction = 10.0;          // σ2, N s/m
+  double noise_coefficient = 0.5;          // σ3
+  double static_coefficient = 0.8;         // μ_s
+  double dynamic_coefficient = 0.2;        // μ_d
+  double stribeck_velocity_mps = 0.1;      // v_s
+  double breakaway_ratio = 0.1;            // c_ba, 0 < c_ba < 1
+};
+
+// The stylus tip as a point mass, and the shape that rolls (roll style).
+struct ProbeParams {
+  double mass_kg = 0.01;
+  double ball_radius_m = 2e-3;
+};
+
+// Output stage: channel 1 speaker, channel 2 vibrotactile transducer.
+struct OutputParams {
+  double sound_gain = 1.0;  // linear; may be "exaggerated" (noisy room): the limiter keeps |y| <= 1
+  double haptic_gain = 1.0;
+  bool haptic_enabled = true;  // false when no transducer is configured: the path is skipped
+  double haptic_low_hz = 40.0;   // transducer band
+  double haptic_high_hz = 800.0;
+};
+
+struct MaterialParams {
+  ResonatorParams resonator;
+  ImpactParams impact;
+  FrictionParams friction;
+  ProbeParams probe;
+};
+
+}  // namespace sas::synth
