@@ -1,0 +1,54 @@
+// Owned height field with its summed-area table (see height_field.h).
+#include "surface/height_field.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sas::surface {
+
+HeightField::HeightField(int width, int height, double pitch_m, std::vector<float> heights_m)
+    : width_(width), height_(height), pitch_m_(pitch_m), heights_(std::move(heights_m)) {
+  if (width <= 0 || height <= 0 ||
+      heights_.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    throw std::invalid_argument("HeightField: size does not match width * height");
+  }
+  if (!(pitch_m > 0.0)) throw std::invalid_argument("HeightField: pitch must be positive");
+  const auto stride = static_cast<std::size_t>(width) + 1;
+  summed_area_.assign(stride * (static_cast<std::size_t>(height) + 1), 0.0);
+  for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) {
+    double row_sum = 0.0;
+    for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x) {
+      row_sum += heights_[y * static_cast<std::size_t>(width) + x];
+      summed_area_[(y + 1) * stride + x + 1] = summed_area_[y * stride + x + 1] + row_sum;
+    }
+  }
+}
+
+double HeightField::BoxMean(int x0, int y0, int x1, int y1) const {
+  if (empty()) return 0.0;
+  x0 = std::clamp(x0, 0, width_ - 1);
+  x1 = std::clamp(x1, 0, width_ - 1);
+  y0 = std::clamp(y0, 0, height_ - 1);
+  y1 = std::clamp(y1, 0, height_ - 1);
+  if (x1 < x0) std::swap(x0, x1);
+  if (y1 < y0) std::swap(y0, y1);
+  const auto stride = static_cast<std::size_t>(width_) + 1;
+  const auto sat = [&](int x, int y) {
+    return summed_area_[static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)];
+  };
+  const double sum = sat(x1 + 1, y1 + 1) - sat(x0, y1 + 1) - sat(x1 + 1, y0) + sat(x0, y0);
+  return sum / (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1));
+}
+
+synth::HeightFieldView HeightField::View() const {
+  synth::HeightFieldView view;
+  if (empty()) return view;
+  view.height_m = heights_.data();
+  view.summed_area = summed_area_.data();
+  view.width = width_;
+  view.height = height_;
+  view.pitch_m = pitch_m_;
+  return view;
+}
+
+}  // namespace sas::surface

@@ -1,0 +1,42 @@
+#pragma once
+// An owned height field: heights in metres on a regular grid plus the summed-area table the
+// synth's surface reader uses to average over the probe width in O(1). Built once at load time
+// (from a picture, a sound or a scan) and then only read; View() hands the synth a non-owning
+// HeightFieldView. A 1-D profile is a field one row high.
+
+#include <vector>
+
+#include "synth/height_field_view.h"
+
+namespace sas::surface {
+
+class HeightField {
+ public:
+  HeightField() = default;
+  // Takes `heights_m` (row-major, width * height values) and computes the summed-area table.
+  HeightField(int width, int height, double pitch_m, std::vector<float> heights_m);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double pitch_m() const { return pitch_m_; }
+  bool empty() const { return heights_.empty(); }
+  const std::vector<float>& heights_m() const { return heights_; }
+  float at(int x, int y) const {
+    return heights_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                    static_cast<std::size_t>(x)];
+  }
+
+  // Mean height over the inclusive pixel box [x0, x1] x [y0, y1] (clamped to the field).
+  double BoxMean(int x0, int y0, int x1, int y1) const;
+
+  synth::HeightFieldView View() const;
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  double pitch_m_ = 0.153e-3;
+  std::vector<float> heights_;
+  std::vector<double> summed_area_;
+};
+
+}  // namespace sas::surface
