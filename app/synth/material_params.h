@@ -16,10 +16,11 @@ inline constexpr int kMaxModes = 64;
 
 // One mode of the resonating object.
 struct ModeParams {
-  double frequency_hz = 440.0;
-  double decay_s = 0.5;     // time for the mode's amplitude to fall by 1/e... see resonator docs
-  double mass_kg = 0.01;    // modal mass seen at the contact point
-  double gain = 1.0;        // pickup gain: how much of the mode reaches the output
+  double frequency_hz = 440.0;  // the ringing (damped) frequency heard, Hz
+  double decay_s = 0.5;  // 1/e time constant of the amplitude envelope: |a(t)| ∝ exp(-t / decay_s)
+                         // (the 60 dB decay time T60 is ln(1000) ≈ 6.91 times longer)
+  double mass_kg = 0.01;  // modal mass seen at the contact point
+  double gain = 1.0;      // pickup gain: output = Σ gain · modal velocity (m/s) at the pickup
 };
 
 struct ResonatorParams {
@@ -38,24 +39,26 @@ enum class ContactScheme : std::uint8_t {
 // Hunt–Crossley: f = -k x^α - λ x^α ẋ for x > 0, with μ = λ / k.
 struct ImpactParams {
   bool enabled = true;
-  double stiffness = 1e7;          // k, N/m^α
+  double stiffness = 1e7;            // k, N/m^α
   double dissipation_s_per_m = 0.5;  // μ = λ / k
-  double shape_alpha = 1.5;        // α
-  ContactScheme scheme = ContactScheme::kTrapezoidNewton;
-  int oversample = 0;              // contact sub-steps per sample; 0 = choose from N_c
+  double shape_alpha = 1.5;          // α
+  // Only kDiscreteGradient is implemented so far (issue 3); the others run it too until issue 4
+  // adds them (IsContactSchemeImplemented() in synth/contact.h says which are real).
+  ContactScheme scheme = ContactScheme::kDiscreteGradient;
+  int oversample = 0;  // contact sub-steps per sample; 0 = choose from N_c (see contact.h)
 };
 
 // Elasto-plastic bristle friction: f = σ0 z + σ1 ż + σ2 v + σ3 w.
 struct FrictionParams {
   bool enabled = true;
-  double bristle_stiffness = 1000.0;       // σ0, N/m
-  double bristle_damping = 10.0;           // σ1, N s/m
-  double viscous_friction = 10.0;          // σ2, N s/m
-  double noise_coefficient = 0.5;          // σ3
-  double static_coefficient = 0.8;         // μ_s
-  double dynamic_coefficient = 0.2;        // μ_d
-  double stribeck_velocity_mps = 0.1;      // v_s
-  double breakaway_ratio = 0.1;            // c_ba, 0 < c_ba < 1
+  double bristle_stiffness = 1000.0;   // σ0, N/m
+  double bristle_damping = 10.0;       // σ1, N s/m
+  double viscous_friction = 10.0;      // σ2, N s/m
+  double noise_coefficient = 0.5;      // σ3
+  double static_coefficient = 0.8;     // μ_s
+  double dynamic_coefficient = 0.2;    // μ_d
+  double stribeck_velocity_mps = 0.1;  // v_s
+  double breakaway_ratio = 0.1;        // c_ba, 0 < c_ba < 1
 };
 
 // The stylus tip as a point mass, and the shape that rolls (roll style).
@@ -68,8 +71,8 @@ struct ProbeParams {
 struct OutputParams {
   double sound_gain = 1.0;  // linear; may be "exaggerated" (noisy room): the limiter keeps |y| <= 1
   double haptic_gain = 1.0;
-  bool haptic_enabled = true;  // false when no transducer is configured: the path is skipped
-  double haptic_low_hz = 40.0;   // transducer band
+  bool haptic_enabled = true;   // false when no transducer is configured: the path is skipped
+  double haptic_low_hz = 40.0;  // transducer band
   double haptic_high_hz = 800.0;
 };
 

@@ -1,0 +1,82 @@
+#pragma once
+// The synth's top level: one probe (the stylus tip) touching one resonating material over a
+// surface profile, rendered to two channels. Chain per sample (DESIGN.md §1, paper §4):
+//   ProbeCommand -> SurfaceReader (profile under the probe: width window, penetration threshold,
+//   scrape | rub | roll) -> contact (Hunt–Crossley normal force + elasto-plastic friction, solved
+//   together with the probe mass and the resonator) -> ModalResonator (exact per-mode update)
+//   -> OutputStage (ch 1 sound: gain + soft limiter; ch 2 haptic: 40–800 Hz band, gain, limiter).
+// Process() loops one inline per-sample kernel; the block is split at the commands' frame
+// offsets, so rendering in any block size gives bit-identical output. Process() allocates nothing,
+// takes no lock, throws nothing, does no I/O, and runs with denormals flushed (FTZ/DAZ).
+
+#include <cstdint>
+#include <memory>
+
+#include "synth/height_field_view.h"
+#include "synth/material_params.h"
+#include "synth/probe_command.h"
+
+namespace sas::synth {
+
+// A snapshot of the physical state, for tests, meters and the calibration commands.
+struct SceneProbeState {
+  bool active = false;            // false: tip up and the probe parked (no contact computed)
+  double height_m = 0.0;          // probe height (up = positive)
+  double velocity_mps = 0.0;      // probe vertical velocity
+  double compression_m = 0.0;     // Hunt–Crossley compression x (> 0 in contact)
+  double normal_force_n = 0.0;    // last contact force on the probe (up = positive)
+  double friction_force_n = 0.0;  // last friction force on the resonator (along the stroke)
+  double bristle_m = 0.0;         // elasto-plastic bristle deflection z
+  double surface_offset_m = 0.0;  // felt profile height under the probe
+  double x_m = 0.0;               // probe position on the surface
+  double y_m = 0.0;
+  int substeps = 1;  // contact sub-steps used in the last sample
+};
+
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
+
+  // Sets the sample rate (Hz). Not real-time.
+  void Init(double sample_rate_hz);
+
+  // Takes the material, the output settings and the surface (the view must outlive the scene or
+  // the next Prepare). Computes the per-mode coefficients and picks the contact oversampling.
+  // Not real-time; keeps the current state (call Reset() to start from rest).
+  void Prepare(const MaterialParams& material, const OutputParams& output,
+               const HeightFieldView& surface);
+
+  // Back to rest: probe parked, resonator and filters silent. Equals a freshly prepared scene.
+  void Reset();
+
+  // Renders `frames` frames of 2 interleaved channels (ch 1 sound, ch 2 haptic) into
+  // `interleaved_out`. `commands` (sorted by frame_offset; offsets >= frames apply at the last
+  // frame) take effect at the sample they name. Real-time safe.
+  void Process(const ProbeCommand* commands, int command_count, float* interleaved_out, int frames);
+
+  // Vibrational energy of the resonator (J), cheap (O(modes)).
+  double ResonatorEnergy() const;
+  // Total mechanical energy (J): resonator + probe kinetic + contact potential k x^(α+1)/(α+1) +
+  // bristle σ0 z²/2 + potential of the constant push (f_N · height). Without input it never
+  // increases (the contact schemes are passive).
+  double TotalEnergy() const;
+  // True when the tip is up, the probe parked, the resonator below -120 dB of full scale and
+  // the output filters silent: a block would be all zeros (issue 4 skips such blocks).
+  bool IsIdle() const;
+
+  SceneProbeState probe_state() const;
+  double sample_rate_hz() const;
+  int contact_oversample() const;  // sub-steps per sample used while in contact
+  int active_mode_count() const;   // modes actually computed (below 0.45 fs, audible)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sas::synth
