@@ -1,0 +1,255 @@
+// Material files: every shipped file loads and is physically sane; every kind of bad input is an
+// error naming file, line and key; a failed load leaves nothing half-loaded.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "kiosk/material_file.h"
+#include "sas/version.h"
+#include "support/temp_dir.h"
+
+using sas::kiosk::LoadMaterialDirectory;
+using sas::kiosk::LoadMaterialFile;
+using sas::kiosk::Material;
+using sas::kiosk::MaterialError;
+using sas::kiosk::MaterialLibrary;
+using sas::kiosk::ParseMaterial;
+
+namespace {
+
+std::string ShippedDir() {
+  return std::string(sas::kSourceDir) + "/textures/materials";
+}
+
+// A complete, valid material. Line numbers matter to the tests below: description is line 1,
+// the two modes lines 3 and 4, [probe] line 6, [impact] line 9, [friction] line 16, mu_d line 23.
+const char* const kValid =
+    "description = \"Test material\"\n"                                           // 1
+    "modes = [\n"                                                                 // 2
+    "  { frequency_hz = 440, decay_s = 0.5, mass_kg = 0.02, gain = 1.0 },\n"      // 3
+    "  { frequency_hz = 1234.5, decay_s = 0.1, mass_kg = 0.03, gain = -0.5 },\n"  // 4
+    "]\n"                                                                         // 5
+    "[probe]\n"                                                                   // 6
+    "mass_kg = 0.004\n"                                                           // 7
+    "ball_radius_m = 0.002\n"                                                     // 8
+    "[impact]\n"                                                                  // 9
+    "enabled = true\n"                                                            // 10
+    "stiffness_n_per_m_alpha = 3e7\n"                                             // 11
+    "dissipation_s_per_m = 0.5\n"                                                 // 12
+    "shape_alpha = 1.7\n"                                                         // 13
+    "scheme = \"discrete_gradient\"\n"                                            // 14
+    "oversample = 4\n"                                                            // 15
+    "[friction]\n"                                                                // 16
+    "enabled = false\n"                                                           // 17
+    "sigma0_n_per_m = 2000\n"                                                     // 18
+    "sigma1_n_s_per_m = 4\n"                                                      // 19
+    "sigma2_n_s_per_m = 0.3\n"                                                    // 20
+    "sigma3_noise = 0.25\n"                                                       // 21
+    "mu_s = 0.5\n"                                                                // 22
+    "mu_d = 0.25\n"                                                               // 23
+    "stribeck_velocity_mps = 0.07\n"                                              // 24
+    "breakaway_ratio = 0.6\n";                                                    // 25
+
+// kValid with the first occurrence of `from` replaced by `to` (must occur).
+std::string Edit(const std::string& from, const std::string& to) {
+  std::string text = kValid;
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  return text;
+}
+
+Material Parse(const std::string& text) {
+  return ParseMaterial(text, "m.toml", "test");
+}
+
+// Hunt–Crossley contact time of a mass on a rigid wall with λ = 0 (reference/hunt-crossley.md):
+// t_c = 2 (x_max / v) √π Γ(1 + 1/(α+1)) / Γ(½ + 1/(α+1)), x_max = ((α+1) m v² / (2k))^(1/(α+1)).
+double ContactTimeS(double mass_kg, double k, double alpha, double v_mps) {
+  const double x_max =
+      std::pow((alpha + 1.0) * mass_kg * v_mps * v_mps / (2.0 * k), 1.0 / (alpha + 1.0));
+  const double b = 1.0 / (alpha + 1.0);
+  return 2.0 * (x_max / v_mps) * std::sqrt(M_PI) * std::tgamma(1.0 + b) / std::tgamma(0.5 + b);
+}
+
+}  // namespace
+
+TEST_CASE("every shipped material file loads with all six materials present", "[kiosk]") {
+  const auto materials = LoadMaterialDirectory(ShippedDir());
+  for (const char* name : {"glass", "wood", "plastic", "metal", "dry_soil", "bubble_wrap"}) {
+    INFO(name);
+    const auto found = std::find_if(materials.begin(), materials.end(),
+                                    [&](const Material& m) { return m.name == name; });
+    REQUIRE(found != materials.end());
+    CHECK_FALSE(found->description.empty());
+    CHECK(found->params.resonator.mode_count > 0);
+  }
+}
+
+TEST_CASE("shipped materials keep every mode below 0.45 x 48 kHz and decaying", "[kiosk]") {
+  for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
+    INFO(material.name);
+    const auto& resonator = material.params.resonator;
+    for (int i = 0; i < resonator.mode_count; ++i) {
+      const auto& mode = resonator.modes[static_cast<std::size_t>(i)];
+      CHECK(mode.frequency_hz < 0.45 * 48000.0);
+      // Decay time shorter than 2 s and longer than one period: a resonance that rings but ends.
+      CHECK(mode.decay_s < 2.0);
+      CHECK(mode.decay_s * mode.frequency_hz > 0.1);
+    }
+  }
+}
+
+TEST_CASE("shipped materials resolve every contact with at least 8 samples at 48 kHz and 1 m/s",
+          "[kiosk]") {
+  // Samples per contact decide the impact's accuracy (reference/hunt-crossley.md): fewer than ~8
+  // and every scheme needs heavy oversampling. Checked at a brisk 1 m/s with the material's probe.
+  for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
+    INFO(material.name);
+    const auto& impact = material.params.impact;
+    const double t_c =
+        ContactTimeS(material.params.probe.mass_kg, impact.stiffness, impact.shape_alpha, 1.0);
+    CHECK(t_c * 48000.0 >= 8.0);
+    CHECK(material.params.probe.mass_kg >= 1e-3);
+    CHECK(material.params.probe.mass_kg <= 10e-3);
+  }
+}
+
+TEST_CASE("the contact-time oracle reproduces the reference table", "[kiosk]") {
+  // Guards the helper above: λ = 0 contact time of m = 10 g, α = 1.5, v = 1 m/s, k = 1e6 is
+  // 2.94328 x_max / v with x_max = (2.5 · 0.01 / 2e6)^(1/2.5).
+  const double x_max = std::pow(2.5 * 0.01 / 2e6, 1.0 / 2.5);
+  CHECK(ContactTimeS(0.01, 1e6, 1.5, 1.0) == Approx(2.94328 * x_max).epsilon(1e-5));
+}
+
+TEST_CASE("every value in a material file reaches the synth's parameter structs", "[kiosk]") {
+  const Material material = Parse(kValid);
+  CHECK(material.name == "test");
+  CHECK(material.description == "Test material");
+  const auto& p = material.params;
+  REQUIRE(p.resonator.mode_count == 2);
+  CHECK(p.resonator.modes[0].frequency_hz == 440.0);
+  CHECK(p.resonator.modes[1].frequency_hz == 1234.5);
+  CHECK(p.resonator.modes[1].decay_s == 0.1);
+  CHECK(p.resonator.modes[1].mass_kg == 0.03);
+  CHECK(p.resonator.modes[1].gain == -0.5);
+  CHECK(p.probe.mass_kg == 0.004);
+  CHECK(p.probe.ball_radius_m == 0.002);
+  CHECK(p.impact.enabled);
+  CHECK(p.impact.stiffness == 3e7);
+  CHECK(p.impact.dissipation_s_per_m == 0.5);
+  CHECK(p.impact.shape_alpha == 1.7);
+  CHECK(p.impact.scheme == sas::synth::ContactScheme::kDiscreteGradient);
+  CHECK(p.impact.oversample == 4);
+  CHECK_FALSE(p.friction.enabled);
+  CHECK(p.friction.bristle_stiffness == 2000.0);
+  CHECK(p.friction.bristle_damping == 4.0);
+  CHECK(p.friction.viscous_friction == 0.3);
+  CHECK(p.friction.noise_coefficient == 0.25);
+  CHECK(p.friction.static_coefficient == 0.5);
+  CHECK(p.friction.dynamic_coefficient == 0.25);
+  CHECK(p.friction.stribeck_velocity_mps == 0.07);
+  CHECK(p.friction.breakaway_ratio == 0.6);
+}
+
+TEST_CASE("an unknown key in a material file is an error naming file, line and key", "[kiosk]") {
+  CHECK_THROWS_WITH(Parse(Edit("shape_alpha", "shape_alpah")),
+                    Catch::Contains("m.toml:13: impact.shape_alpah: unknown key"));
+  CHECK_THROWS_WITH(Parse(Edit("gain = -0.5", "gian = -0.5")),
+                    Catch::Contains("m.toml:4: modes[1].gian: unknown key"));
+  CHECK_THROWS_WITH(Parse(Edit("description", "colour = 3\ndescription")),
+                    Catch::Contains("m.toml:1: colour: unknown key"));
+  // A key written after [friction] belongs to friction, not to the top level.
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "name = \"x\"\n"),
+                    Catch::Contains("m.toml:26: friction.name: unknown key"));
+}
+
+TEST_CASE("a missing key is an error naming file, the table's line and the key", "[kiosk]") {
+  CHECK_THROWS_WITH(Parse(Edit("shape_alpha = 1.7\n", "")),
+                    Catch::Contains("m.toml:9: impact.shape_alpha: missing key"));
+  CHECK_THROWS_WITH(Parse(Edit(", gain = -0.5", "")),
+                    Catch::Contains("m.toml:4: modes[1].gain: missing key"));
+  CHECK_THROWS_WITH(Parse(Edit("description = \"Test material\"\n", "")),
+                    Catch::Contains("description: missing key"));
+  CHECK_THROWS_WITH(Parse(Edit("[probe]\nmass_kg = 0.004\nball_radius_m = 0.002\n", "")),
+                    Catch::Contains("probe: missing table [probe]"));
+}
+
+TEST_CASE("out-of-range, NaN and infinite values are errors naming file, line and key", "[kiosk]") {
+  CHECK_THROWS_WITH(
+      Parse(Edit("shape_alpha = 1.7", "shape_alpha = 5")),
+      Catch::Contains("m.toml:13: impact.shape_alpha:") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(
+      Parse(Edit("frequency_hz = 1234.5", "frequency_hz = 30000")),
+      Catch::Contains("m.toml:4: modes[1].frequency_hz:") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(
+      Parse(Edit("oversample = 4", "oversample = -1")),
+      Catch::Contains("m.toml:15: impact.oversample:") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(Parse(Edit("mu_d = 0.25", "mu_d = 0.7")),
+                    Catch::Contains("m.toml:23: friction.mu_d: must not exceed friction.mu_s"));
+  CHECK_THROWS_WITH(
+      Parse(Edit("sigma0_n_per_m = 2000", "sigma0_n_per_m = nan")),
+      Catch::Contains("m.toml:18: friction.sigma0_n_per_m:") && Catch::Contains("finite"));
+  CHECK_THROWS_WITH(Parse(Edit("mass_kg = 0.004", "mass_kg = inf")),
+                    Catch::Contains("m.toml:7: probe.mass_kg:") && Catch::Contains("finite"));
+  // An empty mode list has nothing to resonate.
+  CHECK_THROWS_WITH(
+      Parse(Edit("  { frequency_hz = 440, decay_s = 0.5, mass_kg = 0.02, gain = 1.0 },\n"
+                 "  { frequency_hz = 1234.5, decay_s = 0.1, mass_kg = 0.03, gain = -0.5 },\n",
+                 "")),
+      Catch::Contains("m.toml:2: modes:") && Catch::Contains("expected 1 to 64"));
+}
+
+TEST_CASE("a value of the wrong type is an error naming file, line and key", "[kiosk]") {
+  CHECK_THROWS_WITH(
+      Parse(Edit("stiffness_n_per_m_alpha = 3e7", "stiffness_n_per_m_alpha = \"hard\"")),
+      Catch::Contains("m.toml:11: impact.stiffness_n_per_m_alpha: expected a number"));
+  CHECK_THROWS_WITH(Parse(Edit("enabled = true", "enabled = 1")),
+                    Catch::Contains("m.toml:10: impact.enabled: expected true or false"));
+  CHECK_THROWS_WITH(Parse(Edit("oversample = 4", "oversample = 4.5")),
+                    Catch::Contains("m.toml:15: impact.oversample: expected an integer"));
+  CHECK_THROWS_WITH(Parse(Edit("scheme = \"discrete_gradient\"", "scheme = \"euler\"")),
+                    Catch::Contains("m.toml:14: impact.scheme: unknown scheme"));
+  CHECK_THROWS_WITH(Parse(Edit("description = \"Test material\"", "description = 7")),
+                    Catch::Contains("m.toml:1: description: expected a string"));
+  CHECK_THROWS_WITH(Parse(Edit("[probe]\nmass_kg = 0.004\nball_radius_m = 0.002\n", "probe = 3\n")),
+                    Catch::Contains("m.toml:6: probe: expected a table"));
+}
+
+TEST_CASE("a syntax error in a material file is reported with file and line", "[kiosk]") {
+  CHECK_THROWS_WITH(Parse(Edit("[friction]", "[friction")),
+                    Catch::Contains("m.toml:16: syntax error"));
+}
+
+TEST_CASE("a material's name is its file's stem and a missing file is a clear error", "[kiosk]") {
+  sas::test::TempDir dir;
+  const Material material = LoadMaterialFile(dir.Write("oak_board.toml", kValid));
+  CHECK(material.name == "oak_board");
+  CHECK_THROWS_WITH(LoadMaterialFile(dir.file("none.toml")),
+                    Catch::Contains("none.toml") && Catch::Contains("cannot open"));
+}
+
+TEST_CASE("a directory with one bad file loads nothing and the library keeps its materials",
+          "[kiosk]") {
+  sas::test::TempDir good;
+  good.Write("a_first.toml", kValid);
+  good.Write("b_second.toml", kValid);
+  MaterialLibrary library;
+  library.LoadDirectory(good.path().string());
+  REQUIRE(library.Names() == std::vector<std::string>{"a_first", "b_second"});
+
+  sas::test::TempDir bad;
+  bad.Write("a_fine.toml", kValid);
+  bad.Write("b_broken.toml", Edit("decay_s = 0.1", "decay_s = -1"));
+  bad.Write("c_fine.toml", kValid);
+  CHECK_THROWS_WITH(LoadMaterialDirectory(bad.path().string()),
+                    Catch::Contains("b_broken.toml:4: modes[1].decay_s"));
+  CHECK_THROWS_AS(library.LoadDirectory(bad.path().string()), MaterialError);
+  // The failed reload changed nothing: the same two materials, with their values intact.
+  CHECK(library.Names() == std::vector<std::string>{"a_first", "b_second"});
+  REQUIRE(library.Find("a_first") != nullptr);
+  CHECK(library.Find("a_first")->params.impact.stiffness == 3e7);
+  CHECK(library.Find("c_fine") == nullptr);
+}
