@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "kiosk/kiosk_config.h"
+#include "sas/version.h"
 #include "support/temp_dir.h"
 
 using sas::kiosk::ConfigError;
@@ -47,4 +48,18 @@ TEST_CASE("wrong types, out-of-range values and syntax errors are reported with 
   CHECK_THROWS_WITH(ParseKioskConfig("[gains\nsound_gain_db = 1\n", "k.toml"),
                     Catch::Contains("k.toml:1") && Catch::Contains("syntax error"));
   CHECK_THROWS_AS(LoadKioskConfig("/nonexistent/kiosk.toml"), ConfigError);
+}
+
+TEST_CASE("the shipped example configuration is valid and equals the built-in defaults",
+          "[kiosk]") {
+  const KioskConfig shipped = LoadKioskConfig(std::string(sas::kSourceDir) + "/install/kiosk.toml");
+  const KioskConfig defaults;
+  CHECK(shipped.output_device == defaults.output_device);
+  CHECK(shipped.input_device == defaults.input_device);
+  CHECK(shipped.sample_rate_hz == defaults.sample_rate_hz);
+  CHECK(shipped.buffer_frames == defaults.buffer_frames);
+  CHECK(shipped.sound_gain_db == defaults.sound_gain_db);
+  CHECK(shipped.haptic_gain_db == defaults.haptic_gain_db);
+  CHECK(shipped.idle_timeout_s == defaults.idle_timeout_s);
+  CHECK(shipped.default_texture == defaults.default_texture);
 }
