@@ -1,0 +1,316 @@
+// `sketch-a-scratch render`: material + profile + gesture -> synth::Scene -> 2-channel WAV
+// (see render_command.h for the command line and the material search order).
+#include "kiosk/render_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "kiosk/builtin_profiles.h"
+#include "kiosk/gesture.h"
+#include "sas/version.h"
+#include "synth/scene.h"
+
+namespace sas::kiosk {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMaxRenderS = 600.0;
+
+double Db(double linear) {
+  return linear > 0.0 ? 20.0 * std::log10(linear) : -999.0;
+}
+
+std::string FormatDb(double linear) {
+  char text[32];
+  if (linear <= 0.0) return "-inf dBFS";
+  std::snprintf(text, sizeof text, "%.1f dBFS", Db(linear));
+  return text;
+}
+
+std::string Join(const std::vector<std::string>& items, const char* separator) {
+  std::string joined;
+  for (const auto& item : items) joined += (joined.empty() ? "" : separator) + item;
+  return joined;
+}
+
+Gesture LoadGesture(const std::string& name_or_path) {
+  if (auto builtin = FindBuiltinGesture(name_or_path)) return *builtin;
+  std::error_code error;
+  if (!fs::exists(name_or_path, error)) {
+    throw RenderError("gesture \"" + name_or_path + "\" is neither a built-in (" +
+                      Join(BuiltinGestureNames(), ", ") + ") nor an existing CSV file");
+  }
+  return LoadGestureCsv(name_or_path);
+}
+
+double ParseNumberArg(const std::string& flag, const std::string& value, double min, double max) {
+  char* end = nullptr;
+  const double number = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(number) ||
+      number < min || number > max) {
+    std::ostringstream message;
+    message << flag << ": \"" << value << "\" is not a number in [" << min << ", " << max << "]";
+    throw RenderError(message.str());
+  }
+  return number;
+}
+
+}  // namespace
+
+const char* RenderUsage() {
+  return "usage: sketch-a-scratch render --out FILE.wav [options]\n"
+         "  --material NAME      material file NAME.toml (default wood)\n"
+         "  --profile NAME|FILE  built-in profile (grating, rough, bumps, cracks, flat) or a\n"
+         "                       picture (luminance -> height, 0.153 mm/pixel; default grating)\n"
+         "  --gesture NAME|FILE  built-in gesture (\"slow stroke\", \"fast scribble\", \"tap\",\n"
+         "                       \"passive sweep\") or a CSV file t,x,y,pressure,tilt\n"
+         "                       (s, mm, mm, 0..1, degrees; default \"slow stroke\")\n"
+         "  --out FILE.wav       2-channel WAV: ch 1 sound, ch 2 haptic (required)\n"
+         "  --fs HZ              sample rate, 8000..192000 (default 48000)\n"
+         "  --tail-s S           seconds rendered after the pen is lifted (default 2)\n"
+         "  --materials-dir DIR  searched before $SAS_DATA_DIR/materials, the source tree and\n"
+         "                       the installed share/sketch-a-scratch/materials\n"
+         "  --format float|pcm24 WAV sample format (default float)\n"
+         "  --style auto|scrape|rub|roll   probe style (default auto: from pen tilt)\n"
+         "  --gain-db DB, --haptic-gain-db DB   output gains (default 0)\n";
+}
+
+std::vector<std::string> MaterialSearchDirs(const std::string& cli_dir) {
+  std::vector<std::string> dirs;
+  if (!cli_dir.empty()) dirs.push_back(cli_dir);
+  if (const char* data_dir = std::getenv("SAS_DATA_DIR"); data_dir != nullptr && *data_dir) {
+    dirs.push_back((fs::path(data_dir) / "materials").string());
+  }
+  dirs.push_back((fs::path(kSourceDir) / "textures" / "materials").string());
+  dirs.push_back((fs::path(kInstallPrefix) / "share" / "sketch-a-scratch" / "materials").string());
+  return dirs;
+}
+
+Material FindMaterial(const std::string& name, const std::vector<std::string>& dirs) {
+  std::set<std::string> available;
+  for (const auto& dir : dirs) {
+    const fs::path candidate = fs::path(dir) / (name + ".toml");
+    std::error_code error;
+    if (!name.empty() && name.find('/') == std::string::npos &&
+        fs::is_regular_file(candidate, error)) {
+      return LoadMaterialFile(candidate.string());
+    }
+    for (const auto& found : ListMaterialNames(dir)) available.insert(found);
+  }
+  throw RenderError(
+      "unknown material \"" + name + "\"; available: " +
+      (available.empty() ? std::string("none") : Join({available.begin(), available.end()}, ", ")) +
+      " (searched " + Join(dirs, ", ") + ")");
+}
+
+RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
+  RenderOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string flag = args[i];
+    std::string value;
+    bool has_value = false;
+    if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
+      value = flag.substr(eq + 1);
+      flag = flag.substr(0, eq);
+      has_value = true;
+    }
+    const auto next = [&]() -> std::string {
+      if (has_value) return value;
+      if (i + 1 >= args.size()) throw RenderError(flag + " needs a value");
+      return args[++i];
+    };
+    if (flag == "--material") {
+      options.material = next();
+    } else if (flag == "--profile") {
+      options.profile = next();
+    } else if (flag == "--gesture") {
+      options.gesture = next();
+    } else if (flag == "--out") {
+      options.out_path = next();
+    } else if (flag == "--materials-dir") {
+      options.materials_dir = next();
+    } else if (flag == "--fs") {
+      const double rate = ParseNumberArg(flag, next(), 8000.0, 192000.0);
+      if (rate != std::floor(rate)) throw RenderError("--fs: the sample rate must be an integer");
+      options.sample_rate_hz = static_cast<int>(rate);
+    } else if (flag == "--tail-s") {
+      options.tail_s = ParseNumberArg(flag, next(), 0.0, 600.0);
+    } else if (flag == "--gain-db") {
+      options.sound_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
+    } else if (flag == "--haptic-gain-db") {
+      options.haptic_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
+    } else if (flag == "--format") {
+      const std::string format = next();
+      if (format == "float") {
+        options.format = surface::WavFormat::kFloat32;
+      } else if (format == "pcm24") {
+        options.format = surface::WavFormat::kPcm24;
+      } else {
+        throw RenderError("--format: \"" + format + "\" is not float or pcm24");
+      }
+    } else if (flag == "--style") {
+      const std::string style = next();
+      if (style == "auto") {
+        options.style.reset();
+      } else if (style == "scrape") {
+        options.style = synth::ProbeStyle::kScrape;
+      } else if (style == "rub") {
+        options.style = synth::ProbeStyle::kRub;
+      } else if (style == "roll") {
+        options.style = synth::ProbeStyle::kRoll;
+      } else {
+        throw RenderError("--style: \"" + style + "\" is not auto, scrape, rub or roll");
+      }
+    } else {
+      throw RenderError("unknown option \"" + args[i] + "\"");
+    }
+  }
+  if (options.out_path.empty()) throw RenderError("--out FILE.wav is required");
+  return options;
+}
+
+RenderSummary Render(const RenderOptions& options) {
+  if (options.block_frames < 1) throw RenderError("block size must be positive");
+  RenderSummary summary;
+  const Material material =
+      FindMaterial(options.material, MaterialSearchDirs(options.materials_dir));
+  summary.material_file = material.name;
+  const surface::HeightField field = LoadProfile(options.profile);
+  const Gesture gesture = LoadGesture(options.gesture);
+  const double fs_hz = options.sample_rate_hz;
+
+  GestureMapping mapping;
+  mapping.style = options.style;
+  // Full pressure feels the whole relief of this surface, light pressure only its peaks.
+  mapping.max_penetration_m = ReliefM(field);
+  const std::vector<TimedCommand> commands = GestureToCommands(gesture, mapping, fs_hz);
+
+  // A gesture leaving the surface is not an error (the synth clamps to the edge) but worth saying.
+  double max_x_mm = 0.0;
+  double max_y_mm = 0.0;
+  for (const auto& row : gesture.samples) {
+    max_x_mm = std::max(max_x_mm, row.x_mm);
+    max_y_mm = std::max(max_y_mm, row.y_mm);
+  }
+  const double width_mm = field.width() * field.pitch_m() * 1e3;
+  const double height_mm = field.height() * field.pitch_m() * 1e3;
+  if (max_x_mm > width_mm || max_y_mm > height_mm) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the gesture reaches (%.1f, %.1f) mm but the profile is %.1f x %.1f mm", max_x_mm,
+                  max_y_mm, width_mm, height_mm);
+    summary.warnings.emplace_back(text);
+  }
+
+  synth::OutputParams output;
+  output.sound_gain = std::pow(10.0, options.sound_gain_db / 20.0);
+  output.haptic_gain = std::pow(10.0, options.haptic_gain_db / 20.0);
+
+  synth::Scene scene;
+  scene.Init(fs_hz);
+  scene.Prepare(material.params, output, field.View());
+  scene.Reset();
+
+  summary.gesture_s = gesture.duration_s();
+  // Everything is rendered to memory before the WAV is written: keep that bounded.
+  if (summary.gesture_s + options.tail_s > kMaxRenderS) {
+    throw RenderError("gesture plus tail is " + std::to_string(summary.gesture_s + options.tail_s) +
+                      " s; the renderer stops at " + std::to_string(kMaxRenderS) + " s");
+  }
+  const auto total_frames =
+      static_cast<std::int64_t>(std::ceil((summary.gesture_s + options.tail_s) * fs_hz));
+  std::vector<float> audio(static_cast<std::size_t>(total_frames) * 2, 0.0f);
+  std::vector<synth::ProbeCommand> block_commands;
+  block_commands.reserve(commands.size());
+  std::size_t next_command = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::int64_t block_start = 0; block_start < total_frames;
+       block_start += options.block_frames) {
+    const auto frames =
+        static_cast<int>(std::min<std::int64_t>(options.block_frames, total_frames - block_start));
+    block_commands.clear();
+    while (next_command < commands.size() && commands[next_command].frame < block_start + frames) {
+      synth::ProbeCommand command = commands[next_command].command;
+      command.frame_offset = static_cast<std::uint32_t>(
+          std::max<std::int64_t>(0, commands[next_command].frame - block_start));
+      block_commands.push_back(command);
+      ++next_command;
+    }
+    scene.Process(block_commands.data(), static_cast<int>(block_commands.size()),
+                  audio.data() + block_start * 2, frames);
+  }
+  summary.compute_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.duration_s = static_cast<double>(total_frames) / fs_hz;
+  summary.realtime_factor = summary.duration_s > 0.0 ? summary.compute_s / summary.duration_s : 0.0;
+
+  for (int channel = 0; channel < 2; ++channel) {
+    double peak = 0.0;
+    double sum_squares = 0.0;
+    for (std::int64_t i = 0; i < total_frames; ++i) {
+      const double sample = audio[static_cast<std::size_t>(i * 2 + channel)];
+      peak = std::max(peak, std::abs(sample));
+      sum_squares += sample * sample;
+    }
+    summary.channels[channel].peak = peak;
+    summary.channels[channel].rms =
+        total_frames > 0 ? std::sqrt(sum_squares / static_cast<double>(total_frames)) : 0.0;
+  }
+  const auto tail_frames = std::min<std::int64_t>(total_frames, std::llround(0.1 * fs_hz));
+  for (std::int64_t i = (total_frames - tail_frames) * 2; i < total_frames * 2; ++i) {
+    summary.tail_end_peak = std::max(
+        summary.tail_end_peak, static_cast<double>(std::abs(audio[static_cast<std::size_t>(i)])));
+  }
+
+  surface::WriteWav(options.out_path, audio.data(), static_cast<std::size_t>(total_frames), 2,
+                    options.sample_rate_hz, options.format);
+  return summary;
+}
+
+std::string FormatSummary(const RenderOptions& options, const RenderSummary& summary) {
+  char text[512];
+  std::snprintf(
+      text, sizeof text,
+      "%s: %.2f s (gesture %.2f s) at %d Hz, %s on %s, %s | sound peak %s rms %s | "
+      "haptic peak %s rms %s | last 100 ms %s | real-time factor %.4f",
+      options.out_path.c_str(), summary.duration_s, summary.gesture_s, options.sample_rate_hz,
+      summary.material_file.c_str(), options.profile.c_str(), options.gesture.c_str(),
+      FormatDb(summary.channels[0].peak).c_str(), FormatDb(summary.channels[0].rms).c_str(),
+      FormatDb(summary.channels[1].peak).c_str(), FormatDb(summary.channels[1].rms).c_str(),
+      FormatDb(summary.tail_end_peak).c_str(), summary.realtime_factor);
+  return text;
+}
+
+int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
+  RenderOptions options;
+  try {
+    if (std::find(args.begin(), args.end(), "--help") != args.end() ||
+        std::find(args.begin(), args.end(), "-h") != args.end()) {
+      std::fputs(RenderUsage(), out);
+      return EXIT_SUCCESS;
+    }
+    options = ParseRenderArgs(args);
+  } catch (const std::exception& error) {
+    std::fprintf(err, "sketch-a-scratch render: %s\n%s", error.what(), RenderUsage());
+    return 2;
+  }
+  try {
+    const RenderSummary summary = Render(options);
+    for (const auto& warning : summary.warnings) {
+      std::fprintf(err, "sketch-a-scratch render: warning: %s\n", warning.c_str());
+    }
+    std::fprintf(out, "%s\n", FormatSummary(options, summary).c_str());
+    return EXIT_SUCCESS;
+  } catch (const std::exception& error) {
+    std::fprintf(err, "sketch-a-scratch render: error: %s\n", error.what());
+    return EXIT_FAILURE;
+  }
+}
+
+}  // namespace sas::kiosk
