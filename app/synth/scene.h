@@ -46,8 +46,8 @@ class Scene {
   void Init(double sample_rate_hz);
 
   // Takes the material, the output settings and the surface (the view must outlive the scene or
-  // the next Prepare). Computes the per-mode coefficients and picks the contact oversampling.
-  // Not real-time; keeps the current state (call Reset() to start from rest).
+  // the next Prepare). Computes the per-mode coefficients and picks the contact oversampling
+  // (ChooseContactOversample in synth/contact.h). Not real-time. Ends with Reset().
   void Prepare(const MaterialParams& material, const OutputParams& output,
                const HeightFieldView& surface);
 

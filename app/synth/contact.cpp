@@ -1,0 +1,366 @@
+// Contact step solver (Hunt–Crossley + elasto-plastic friction, discrete-gradient scheme) and
+// the rigid-wall impact entry point; see contact.h for the scheme and its sources.
+#include "synth/contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "synth/contact_kernel.h"
+
+namespace sas::synth {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// (1 - e^-r) / r and (r - 1 + e^-r) / r², with their series where the closed forms lose digits.
+double Phi1(double r) {
+  if (r < 1e-3) return 1.0 - r * (0.5 - r * (1.0 / 6.0 - r / 24.0));
+  return -std::expm1(-r) / r;
+}
+double Phi2(double r) {
+  if (r < 1e-3) return 0.5 - r * (1.0 / 6.0 - r * (1.0 / 24.0 - r / 120.0));
+  return (r + std::expm1(-r)) / (r * r);
+}
+
+// Discrete gradient G(x0, x0 + d) of the contact potential and its derivative in d.
+struct Secant {
+  double g = 0.0;
+  double dg = 0.0;
+};
+Secant PotentialSecant(const ImpactModel& m, double x0, double d) {
+  const double x1 = x0 + d;
+  Secant s;
+  if (x0 <= 0.0 && x1 <= 0.0) return s;
+  const double a = m.alpha;
+  if (x0 > 0.0 && x1 > 0.0 && std::fabs(d) <= 1e-4 * std::min(x0, x1)) {
+    // Midpoint expansion: the plain difference quotient cancels for tiny d.
+    const double mid = x0 + 0.5 * d;
+    const double p = std::pow(mid, a - 2.0);    // x^(α-2)
+    const double v1 = m.k * p * mid * mid;      // V'  = k x^α
+    const double v2 = m.k * a * p * mid;        // V'' = k α x^(α-1)
+    const double v3 = m.k * a * (a - 1.0) * p;  // V'''
+    s.g = v1 + v3 * d * d / 24.0;
+    s.dg = 0.5 * v2 + v3 * d / 12.0;  // derivative of the expansion in d (x0 fixed): V''/2 + ...
+    return s;
+  }
+  s.g = (m.Potential(x1) - m.Potential(x0)) / d;
+  s.dg = (m.Force(x1) - s.g) / d;
+  return s;
+}
+
+// Normal force for compression change d: F = G·max(1 + μ d / h, 0), and dF/dd.
+struct NormalEval {
+  double f = 0.0;
+  double df = 0.0;
+};
+NormalEval NormalForce(const ImpactModel& m, double x0, double d, double h) {
+  const Secant s = PotentialSecant(m, x0, d);
+  const double p = 1.0 + m.mu * d / h;
+  NormalEval e;
+  if (p <= 0.0) return e;  // separating faster than 1/μ: Hunt–Crossley would pull; clamp to 0
+  e.f = s.g * p;
+  e.df = s.dg * p + s.g * m.mu / h;
+  return e;
+}
+
+// Root of R(d) = d - c + s·F(d) (F nondecreasing in d, so R is strictly increasing).
+double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h) {
+  if (x0 <= 0.0 && x0 + c <= 0.0) return c;  // the free motion never reaches the surface
+  double hi = c;
+  const double f_hi = NormalForce(m, x0, hi, h).f;
+  if (!(f_hi > 0.0)) return c;
+  // F(lo) <= F(hi) for lo < hi, so lo = c - s F(c) has R(lo) <= 0.
+  double lo = c - compliance * f_hi;
+  double d = lo;
+  NormalEval e = NormalForce(m, x0, d, h);
+  double r = d - c + compliance * e.f;
+  if (r >= 0.0) return d;
+  const double scale = std::max(std::fabs(x0), std::fabs(c)) + 1e-300;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    if (r < 0.0) {
+      lo = d;
+    } else {
+      hi = d;
+    }
+    const double slope = 1.0 + compliance * e.df;
+    double next = d - r / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const double step = std::fabs(next - d);
+    d = next;
+    e = NormalForce(m, x0, d, h);
+    r = d - c + compliance * e.f;
+    if (r == 0.0 || step <= 2.0 * kEps * scale || hi - lo <= 2.0 * kEps * scale) break;
+  }
+  return d;
+}
+
+double FrictionResidual(const FrictionModel& fm, double z0, double u, double a, double coupling,
+                        double h, double fn, double noise) {
+  const BristleStep b = AdvanceBristle(fm, z0, u, h, fn);
+  return u - a + coupling * FrictionStepForce(fm, z0, b, u, h, noise);
+}
+
+// Root of R(u) = u - a + coupling·f(u): continuous, → ±∞, but not monotone where the Stribeck
+// curve falls. Bracket by expansion, then secant steps safeguarded by bisection.
+double SolveFriction(const FrictionModel& fm, double z0, double a, double coupling, double h,
+                     double fn, double noise) {
+  if (!(coupling > 0.0)) return a;
+  double r_a = FrictionResidual(fm, z0, a, a, coupling, h, fn, noise);
+  if (r_a == 0.0) return a;
+  double delta = 2.0 * std::fabs(r_a) + 1e-30;
+  double lo = a, hi = a, r_lo = r_a, r_hi = r_a;
+  bool bracketed = false;
+  for (int i = 0; i < 200 && !bracketed; ++i) {
+    if (r_a > 0.0) {
+      lo = a - delta;
+      r_lo = FrictionResidual(fm, z0, lo, a, coupling, h, fn, noise);
+      bracketed = r_lo <= 0.0;
+    } else {
+      hi = a + delta;
+      r_hi = FrictionResidual(fm, z0, hi, a, coupling, h, fn, noise);
+      bracketed = r_hi >= 0.0;
+    }
+    delta *= 2.0;
+  }
+  if (!bracketed) return a;
+  if (r_lo == 0.0) return lo;
+  if (r_hi == 0.0) return hi;
+  const double scale = std::max({std::fabs(lo), std::fabs(hi), 1e-300});
+  // Illinois regula falsi: superlinear, never leaves the bracket.
+  int side = 0;
+  double u = lo;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    u = (lo * r_hi - hi * r_lo) / (r_hi - r_lo);
+    if (!(u > lo && u < hi)) u = 0.5 * (lo + hi);
+    const double r = FrictionResidual(fm, z0, u, a, coupling, h, fn, noise);
+    if (r == 0.0) return u;
+    if (r < 0.0) {
+      lo = u;
+      r_lo = r;
+      if (side == -1) r_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = u;
+      r_hi = r;
+      if (side == 1) r_lo *= 0.5;
+      side = 1;
+    }
+    if (hi - lo <= 4.0 * kEps * scale) break;
+  }
+  return u;
+}
+
+}  // namespace
+
+bool IsContactSchemeImplemented(ContactScheme scheme) {
+  return scheme == ContactScheme::kDiscreteGradient;
+}
+
+void ImpactModel::Set(const ImpactParams& params) {
+  enabled = params.enabled;
+  k = params.stiffness;
+  mu = params.dissipation_s_per_m;
+  alpha = params.shape_alpha;
+}
+
+double ImpactModel::Potential(double x) const {
+  if (x <= 0.0) return 0.0;
+  return k * std::pow(x, alpha + 1.0) / (alpha + 1.0);
+}
+
+double ImpactModel::Force(double x) const {
+  if (x <= 0.0) return 0.0;
+  return k * std::pow(x, alpha);
+}
+
+void FrictionModel::Set(const FrictionParams& params) {
+  enabled = params.enabled;
+  sigma0 = params.bristle_stiffness;
+  sigma1 = params.bristle_damping;
+  sigma2 = params.viscous_friction;
+  sigma3 = params.noise_coefficient;
+  mu_s = params.static_coefficient;
+  mu_d = params.dynamic_coefficient;
+  v_s = params.stribeck_velocity_mps;
+  c_ba = params.breakaway_ratio;
+}
+
+double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
+  const double ratio = v_mps / v_s;
+  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio * ratio)) / sigma0;
+}
+
+double FrictionModel::SteadySlidingForce(double v_mps, double fn) const {
+  return sigma0 * SteadyDeflection(std::fabs(v_mps), fn) + sigma2 * std::fabs(v_mps);
+}
+
+BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, double h, double fn) {
+  BristleStep out;
+  if (!(fn > 0.0)) return out;  // no normal force: no contact, the bristle is relaxed
+  if (du == 0.0) {
+    out.z1 = z0;
+    out.mean_z = z0;
+    return out;
+  }
+  // Work along the slip: w = z·sgn(du) so the slip is positive; the velocity is frozen at
+  // du / h over the step, so dz/du = 1 - α(z) z / z_ss is an autonomous ODE in the slip.
+  const double sign = du > 0.0 ? 1.0 : -1.0;
+  const double total = std::fabs(du);
+  const double z_ss = model.SteadyDeflection(total / h, fn);
+  const double z_ba = model.c_ba * model.mu_d * fn / model.sigma0;
+  double w = sign * z0;
+  double left = total;
+  double integral = 0.0;  // ∫ w dslip
+  // Elastic (presliding) part: α = 0 while w <= z_ba (this includes w < 0, sgn z ≠ sgn v).
+  if (w < z_ba) {
+    const double piece = std::min(left, z_ba - w);
+    integral += (w + 0.5 * piece) * piece;
+    w += piece;
+    left -= piece;
+  }
+  // Elasto-plastic and plastic parts: exact exponential relaxation with α frozen per piece.
+  for (int i = 0; i < 64 && left > 0.0; ++i) {
+    double alpha = 1.0;
+    if (w < z_ss && z_ss > z_ba) {
+      alpha = 0.5 * (1.0 + std::sin(std::numbers::pi * (w - 0.5 * (z_ss + z_ba)) / (z_ss - z_ba)));
+    }
+    double piece = left;
+    if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
+    const double r = alpha * piece / z_ss;
+    const double p1 = Phi1(r);
+    integral += piece * (piece * Phi2(r) + w * p1);
+    w += (piece - alpha * w * piece / z_ss) * p1;
+    left -= piece;
+  }
+  out.z1 = sign * w;
+  out.mean_z = sign * integral / total;
+  return out;
+}
+
+double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
+                         double h, double noise_n) {
+  const double dz = step.z1 - z0;
+  // σ1 acts only while the bristle deflects with the slip (Dupont et al.'s passivity condition).
+  const double damping = dz * du >= 0.0 ? model.sigma1 * dz / h : 0.0;
+  return model.sigma0 * step.mean_z + damping + model.sigma2 * du / h + noise_n;
+}
+
+ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionModel& friction,
+                                   const ContactStepInput& in) {
+  ContactStepOutput out;
+  const bool friction_on = in.friction_on && in.friction_normal_n > 0.0;
+  double f = friction_on ? in.friction_guess_n : 0.0;
+  double force = 0.0;
+  double du = in.free_du;
+  const bool coupled = in.impact_on && friction_on && in.coupling > 0.0;
+  for (int iteration = 0; iteration < 16; ++iteration) {
+    if (in.impact_on) {
+      const double d =
+          SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h);
+      force = NormalForce(impact, in.x0, d, in.h).f;
+    }
+    if (!friction_on) break;
+    du = SolveFriction(friction, in.z0, in.free_du + in.coupling * force, in.coupling, in.h,
+                       in.friction_normal_n, in.noise_n);
+    const BristleStep b = AdvanceBristle(friction, in.z0, du, in.h, in.friction_normal_n);
+    const double f_new = FrictionStepForce(friction, in.z0, b, du, in.h, in.noise_n);
+    const bool converged = std::fabs(f_new - f) <= 1e-13 * (std::fabs(f_new) + 1e-9);
+    f = f_new;
+    out.z1 = b.z1;
+    if (!coupled || converged) break;
+  }
+  out.normal_n = force;
+  out.friction_n = f;
+  out.dx = in.free_dx - in.normal_compliance * force + in.coupling * f;
+  out.du = in.free_du - in.coupling * f + in.coupling * force;
+  return out;
+}
+
+double RigidWallContactTime(double mass_kg, double k, double alpha, double v_in) {
+  const double x_max =
+      std::pow((alpha + 1.0) * mass_kg * v_in * v_in / (2.0 * k), 1.0 / (alpha + 1.0));
+  const double b = 1.0 / (alpha + 1.0);
+  return 2.0 * (x_max / v_in) * std::sqrt(std::numbers::pi) * std::tgamma(1.0 + b) /
+         std::tgamma(0.5 + b);
+}
+
+int ChooseContactOversample(const ImpactParams& impact, double probe_mass_kg,
+                            double sample_rate_hz) {
+  if (impact.oversample > 0) return std::min(impact.oversample, 1024);
+  if (!impact.enabled || !(impact.stiffness > 0.0)) return 1;
+  const double samples =
+      RigidWallContactTime(probe_mass_kg, impact.stiffness, impact.shape_alpha, 1.0) *
+      sample_rate_hz;
+  if (!(samples > 0.0)) return kMaxOversample;
+  const double n = std::ceil(kTargetContactSamples / samples);
+  return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(kMaxOversample)));
+}
+
+ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
+                                        double v_in, double sample_rate_hz, ContactScheme scheme,
+                                        int oversample, double onset_phase) {
+  (void)scheme;  // only kDiscreteGradient exists so far (IsContactSchemeImplemented)
+  ImpactParams params;
+  params.enabled = true;
+  params.stiffness = k;
+  params.dissipation_s_per_m = mu;
+  params.shape_alpha = alpha;
+  params.oversample = oversample;
+  ContactKernelConfig config;
+  config.impact.Set(params);
+  config.friction.enabled = false;
+  config.probe_mass_kg = mass_kg;
+  config.SetTiming(sample_rate_hz, ChooseContactOversample(params, mass_kg, sample_rate_hz));
+  ModalState modes;  // none: a rigid, immovable body
+  ProbeDynamics probe;
+  probe.active = true;
+  const double period = 1.0 / sample_rate_hz;
+  probe.height_m = onset_phase * v_in * period;  // first touch onset_phase of a sample from now
+  probe.velocity_mps = -v_in;
+  SampleDrive drive;  // flat surface at height 0, no push, no sliding
+
+  ImpactRunResult result;
+  result.oversample = config.substeps;
+  double time = 0.0, touch_time = -1.0;
+  bool in_contact = false;
+  // Within a step the force is constant, so the scheme's own trajectory is a parabola; its peak
+  // and zero crossings give the maximum compression and the contact time without sampling bias.
+  auto observe = [&](double h, double x0, double x1, double v0, double v1) {
+    const double xd0 = -v0, xd1 = -v1;  // compression rate (the wall does not move)
+    const double acc = (xd1 - xd0) / h;
+    if (xd0 > 0.0 && xd1 <= 0.0) {
+      const double t_peak = xd0 / (xd0 - xd1) * h;
+      result.max_compression_m = std::max(result.max_compression_m, x0 + 0.5 * xd0 * t_peak);
+    }
+    result.max_compression_m = std::max({result.max_compression_m, x0, x1});
+    auto crossing = [&](double sign) {  // root of x0 + xd0 t + acc t²/2 in [0, h]
+      const double disc = std::max(xd0 * xd0 - 2.0 * acc * x0, 0.0);
+      const double q = -0.5 * (xd0 + sign * std::sqrt(disc));
+      double t = q != 0.0 ? x0 / -q : 0.0;  // stable form of the quadratic root
+      if (!(t >= 0.0 && t <= h)) t = acc != 0.0 ? q / (0.5 * acc) : h;
+      if (!(t >= 0.0 && t <= h)) t = x0 / (x0 - x1) * h;
+      return t;
+    };
+    if (!in_contact && x0 <= 0.0 && x1 > 0.0) {
+      in_contact = true;
+      touch_time = time + crossing(1.0);
+    } else if (in_contact && x0 > 0.0 && x1 <= 0.0) {
+      in_contact = false;
+      result.separated = true;
+      result.contact_time_s = time + crossing(-1.0) - touch_time;
+    }
+    time += h;
+  };
+  const long max_samples = static_cast<long>(10.0 * sample_rate_hz);
+  for (long n = 0; n < max_samples; ++n) {
+    StepContactSample(config, modes, probe, drive, observe);
+    if (result.separated && probe.compression_m < 0.0) break;
+  }
+  result.exit_velocity_mps = std::fabs(probe.velocity_mps);
+  result.samples_per_contact = result.contact_time_s * sample_rate_hz;
+  return result;
+}
+
+}  // namespace sas::synth

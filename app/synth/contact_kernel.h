@@ -1,0 +1,163 @@
+#pragma once
+// The per-sample contact kernel: probe (point mass, vertical) + contact (Hunt–Crossley and
+// friction, contact.h) + modal resonator (exact maps, modal_resonator.h) advanced by one output
+// sample. Scene::Process and SimulateRigidWallImpact both run exactly this function, so the
+// calibration command measures the code that makes the sound (DESIGN.md §5.1: never write the
+// maths twice).
+//
+// Geometry (vertical, up = positive): the surface under the probe sits at s(t) + Σ q_i (felt
+// profile plus the resonator's contact displacement); the probe at y. Compression
+// x = s + Σ q - y > 0 means contact. The probe is pushed down by the pen's force f_N and up by the
+// contact force F; the resonator receives -F (normal) + f (friction, along the stroke, acting on
+// the same modal coordinates: one pickup shared by both interactions, as in the SDT).
+// While the contact is active (or about to start within the sample) the sample is split into
+// `substeps` equal sub-steps with the modes advanced by their exact sub-step maps; otherwise one
+// exact full-sample step of free motion is taken.
+
+#include <cmath>
+
+#include "synth/contact.h"
+#include "synth/modal_resonator.h"
+
+namespace sas::synth {
+
+struct ContactKernelConfig {
+  ImpactModel impact;
+  FrictionModel friction;
+  double probe_mass_kg = 0.01;
+  double period_s = 1.0 / 48000.0;
+  double sub_step_s = 1.0 / 48000.0;
+  int substeps = 1;
+
+  void SetTiming(double sample_rate_hz, int contact_substeps) {
+    substeps = contact_substeps < 1 ? 1 : contact_substeps;
+    period_s = 1.0 / sample_rate_hz;
+    sub_step_s = period_s / static_cast<double>(substeps);
+  }
+};
+
+struct ProbeDynamics {
+  bool active = false;         // false: parked (tip up), nothing computed
+  double height_m = 0.0;       // y
+  double velocity_mps = 0.0;   // dy/dt
+  double bristle_m = 0.0;      // z
+  double normal_n = 0.0;       // last F (up, on the probe)
+  double friction_n = 0.0;     // last f (on the resonator)
+  double compression_m = 0.0;  // x at the end of the last step
+  int substeps_used = 0;
+  bool touched = false;  // a contact force acted during the last sample
+};
+
+// What the control side imposes over one sample.
+struct SampleDrive {
+  double surface_begin_m = 0.0;     // felt profile height at the start of the sample
+  double surface_end_m = 0.0;       // ... and at its end (linear in between)
+  double slide_velocity_mps = 0.0;  // tangential velocity of the probe (driven by the hand)
+  double push_n = 0.0;              // f_N pressing the probe down
+  double friction_share = 1.0;      // style weight of the friction (roll = 0)
+  double noise_n = 0.0;             // σ3 w for this sample
+};
+
+struct NoObserver {
+  void operator()(double, double, double, double, double) const {}
+};
+
+// Advances probe + contact + modes by one sample. `observe(h, x0, x1, v0, v1)` is called once per
+// (sub-)step with the step length, compression and probe velocity before/after (tests,
+// calibration).
+template <class Observer = NoObserver>
+inline void StepContactSample(const ContactKernelConfig& config, ModalState& modes,
+                              ProbeDynamics& probe, const SampleDrive& drive,
+                              Observer&& observe = Observer{}) {
+  probe.touched = false;
+  if (!probe.active) {
+    AdvanceModes(modes, modes.full, 0.0);
+    probe.substeps_used = 0;
+    return;
+  }
+  const double mass = config.probe_mass_kg;
+  const bool impact_on = config.impact.enabled;
+  const bool friction_on = config.friction.enabled && drive.friction_share > 0.0;
+  const double period = config.period_s;
+  double contact_displacement = modes.ContactDisplacement();
+  const double x_start = drive.surface_begin_m + contact_displacement - probe.height_m;
+
+  bool contact = false;
+  if (impact_on) {
+    const double x_end_free = drive.surface_end_m + contact_displacement +
+                              FreeContactMotion(modes, modes.full) -
+                              (probe.height_m + probe.velocity_mps * period -
+                               0.5 * drive.push_n / mass * period * period);
+    contact = x_start > 0.0 || x_end_free > 0.0;
+  } else {
+    contact = friction_on && drive.push_n > 0.0;
+  }
+
+  if (!contact) {
+    // Free flight: exact parabola for the probe, exact free ring of the modes, bristle relaxed.
+    const double v0 = probe.velocity_mps;
+    AdvanceModes(modes, modes.full, 0.0);
+    probe.height_m += v0 * period - 0.5 * drive.push_n / mass * period * period;
+    probe.velocity_mps = v0 - drive.push_n / mass * period;
+    probe.bristle_m = 0.0;
+    probe.normal_n = 0.0;
+    probe.friction_n = 0.0;
+    probe.compression_m = drive.surface_end_m + modes.ContactDisplacement() - probe.height_m;
+    probe.substeps_used = 1;
+    observe(period, x_start, probe.compression_m, v0, probe.velocity_mps);
+    return;
+  }
+
+  const int n = config.substeps;
+  const double h = config.sub_step_s;
+  const double inv_n = 1.0 / static_cast<double>(n);
+  double surface = drive.surface_begin_m;
+  for (int j = 0; j < n; ++j) {
+    const double surface_next =
+        j + 1 == n ? drive.surface_end_m
+                   : drive.surface_begin_m + (drive.surface_end_m - drive.surface_begin_m) *
+                                                 static_cast<double>(j + 1) * inv_n;
+    const double x0 = surface + contact_displacement - probe.height_m;
+    const double free_resonator = FreeContactMotion(modes, modes.sub);
+    const double v0 = probe.velocity_mps;
+    ContactStepInput in;
+    in.h = h;
+    in.x0 = x0;
+    in.coupling = modes.sub_compliance;
+    in.impact_on = impact_on;
+    in.friction_on = friction_on;
+    in.z0 = probe.bristle_m;
+    in.friction_guess_n = probe.friction_n;
+    in.noise_n = drive.noise_n;
+    if (impact_on) {
+      in.free_dx =
+          (surface_next - surface) + free_resonator - (v0 * h - 0.5 * drive.push_n / mass * h * h);
+      in.normal_compliance = modes.sub_compliance + 0.5 * h * h / mass;
+      // Friction sees the normal force of the previous sub-step (explicit in f_N only: the
+      // friction step stays passive for any f_N >= 0).
+      in.friction_normal_n = drive.friction_share * (probe.normal_n > 0.0 ? probe.normal_n : 0.0);
+    } else {
+      in.friction_normal_n = drive.friction_share * drive.push_n;
+    }
+    in.free_du = drive.slide_velocity_mps * h - free_resonator;
+    const ContactStepOutput out = SolveContactStep(config.impact, config.friction, in);
+
+    contact_displacement += AdvanceModes(modes, modes.sub, out.friction_n - out.normal_n);
+    if (impact_on) {
+      const double acc = (out.normal_n - drive.push_n) / mass;
+      probe.height_m += v0 * h + 0.5 * acc * h * h;
+      probe.velocity_mps = v0 + acc * h;
+    }
+    probe.bristle_m = in.friction_normal_n > 0.0 && friction_on ? out.z1 : 0.0;
+    probe.normal_n = out.normal_n;
+    probe.friction_n = out.friction_n;
+    if (out.normal_n != 0.0 || out.friction_n != 0.0) probe.touched = true;
+    surface = surface_next;
+    const double x1 = surface + contact_displacement - probe.height_m;
+    observe(h, x0, x1, v0, probe.velocity_mps);
+    probe.compression_m = x1;
+  }
+  probe.substeps_used = n;
+}
+
+}  // namespace sas::synth

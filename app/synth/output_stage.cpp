@@ -1,0 +1,75 @@
+// Output stage: gains, haptic band-pass and soft limiters (see output_stage.h).
+#include "synth/output_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sas::synth {
+namespace {
+
+// RBJ audio-EQ-cookbook biquads (R. Bristow-Johnson); Q values of the Butterworth sections.
+Biquad LowPass(double cutoff_hz, double q, double fs) {
+  const double w = 2.0 * std::numbers::pi * cutoff_hz / fs;
+  const double alpha = std::sin(w) / (2.0 * q), c = std::cos(w);
+  const double a0 = 1.0 + alpha;
+  Biquad b;
+  b.b0 = (1.0 - c) / 2.0 / a0;
+  b.b1 = (1.0 - c) / a0;
+  b.b2 = b.b0;
+  b.a1 = -2.0 * c / a0;
+  b.a2 = (1.0 - alpha) / a0;
+  return b;
+}
+
+Biquad HighPass(double cutoff_hz, double q, double fs) {
+  const double w = 2.0 * std::numbers::pi * cutoff_hz / fs;
+  const double alpha = std::sin(w) / (2.0 * q), c = std::cos(w);
+  const double a0 = 1.0 + alpha;
+  Biquad b;
+  b.b0 = (1.0 + c) / 2.0 / a0;
+  b.b1 = -(1.0 + c) / a0;
+  b.b2 = b.b0;
+  b.a1 = -2.0 * c / a0;
+  b.a2 = (1.0 - alpha) / a0;
+  return b;
+}
+
+}  // namespace
+
+void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
+  auto finite_or = [](double v, double fallback) { return std::isfinite(v) ? v : fallback; };
+  sound_gain_ = finite_or(params.sound_gain, 0.0);
+  haptic_gain_ = finite_or(params.haptic_gain, 0.0);
+  haptic_enabled_ = params.haptic_enabled;
+  const double nyquist_guard = 0.45 * sample_rate_hz;
+  const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
+  const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
+  sections_[0] = HighPass(low, std::numbers::sqrt2 / 2.0, sample_rate_hz);
+  // 8th-order Butterworth: Q_k = 1 / (2 cos((2k - 1) π / 16)), k = 1..4.
+  for (int k = 1; k <= 4; ++k) {
+    const double q = 1.0 / (2.0 * std::cos((2.0 * k - 1.0) * std::numbers::pi / 16.0));
+    sections_[static_cast<std::size_t>(k)] = LowPass(high, q, sample_rate_hz);
+  }
+  Reset();
+}
+
+void OutputStage::Reset() {
+  for (auto& s : sections_) s.s1 = s.s2 = 0.0;
+}
+
+double OutputStage::SoftLimit(double x) {
+  if (!std::isfinite(x)) return std::isnan(x) ? 0.0 : (x > 0.0 ? 1.0 : -1.0);
+  const double magnitude = std::fabs(x);
+  if (magnitude <= kKnee) return x;
+  const double y = kKnee + (1.0 - kKnee) * std::tanh((magnitude - kKnee) / (1.0 - kKnee));
+  return x > 0.0 ? y : -y;
+}
+
+double OutputStage::FilterActivity() const {
+  double m = 0.0;
+  for (const auto& s : sections_) m = std::max({m, std::fabs(s.s1), std::fabs(s.s2)});
+  return m;
+}
+
+}  // namespace sas::synth

@@ -1,0 +1,67 @@
+#pragma once
+// Output stage (DESIGN.md §1): channel 1 drives the speaker, channel 2 the vibrotactile
+// transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
+// the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
+//   ch 1: NaN/Inf -> 0, × sound_gain, soft limiter
+//   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 8th-order
+//         Butterworth low-pass, RBJ biquads, so nothing much above 1 kHz reaches the transducer),
+//         × haptic_gain, soft limiter; skipped (zeros) when haptic_enabled is false.
+// Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
+// every finite input, so "exaggerated" gains never clip hard and never overflow.
+
+#include <array>
+#include <cmath>
+
+#include "synth/material_params.h"
+
+namespace sas::synth {
+
+struct Biquad {
+  double b0 = 1.0, b1 = 0.0, b2 = 0.0, a1 = 0.0, a2 = 0.0;  // normalised (a0 = 1)
+  double s1 = 0.0, s2 = 0.0;                                // transposed direct form II state
+  double Process(double x) {
+    const double y = b0 * x + s1;
+    s1 = b1 * x - a1 * y + s2;
+    s2 = b2 * x - a2 * y;
+    return y;
+  }
+};
+
+class OutputStage {
+ public:
+  static constexpr double kKnee = 0.5;
+
+  void Prepare(const OutputParams& params, double sample_rate_hz);
+  void Reset();
+
+  static double SoftLimit(double x);
+
+  // One frame: writes the sound and haptic samples for input `pickup`.
+  void Process(double pickup, float* sound, float* haptic) {
+    if (!std::isfinite(pickup)) pickup = 0.0;
+    *sound = static_cast<float>(SoftLimit(sound_gain_ * pickup));
+    if (!haptic_enabled_) {
+      *haptic = 0.0f;
+      return;
+    }
+    double y = pickup;
+    for (auto& section : sections_) y = section.Process(y);
+    if (!std::isfinite(y)) {  // cannot happen for finite input, but never let NaN reach a device
+      Reset();
+      y = 0.0;
+    }
+    *haptic = static_cast<float>(SoftLimit(haptic_gain_ * y));
+  }
+
+  // Largest magnitude held in the filter state (for idle detection).
+  double FilterActivity() const;
+
+ private:
+  static constexpr int kSections = 5;  // 1 high-pass + 4 low-pass biquads
+  std::array<Biquad, kSections> sections_{};
+  double sound_gain_ = 1.0;
+  double haptic_gain_ = 1.0;
+  bool haptic_enabled_ = true;
+};
+
+}  // namespace sas::synth

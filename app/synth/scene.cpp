@@ -1,0 +1,300 @@
+// Scene: commands -> surface reader -> contact kernel -> output stage (see scene.h).
+#include "synth/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "synth/contact_kernel.h"
+#include "synth/output_stage.h"
+#include "synth/surface_reader.h"
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
+
+namespace sas::synth {
+namespace {
+
+// Flush-to-zero and denormals-are-zero for the duration of Process(): a decaying resonator
+// would otherwise spend its tail in subnormal arithmetic (100× slower on x86).
+class DenormalGuard {
+ public:
+#if defined(__SSE__) || defined(__x86_64__)
+  DenormalGuard() : saved_(_mm_getcsr()) {
+    _mm_setcsr(saved_ | 0x8040u);
+  }  // FTZ | DAZ
+  ~DenormalGuard() {
+    _mm_setcsr(saved_);
+  }
+
+ private:
+  unsigned saved_;
+#elif defined(__aarch64__)
+  DenormalGuard() {
+    asm volatile("mrs %0, fpcr" : "=r"(saved_));
+    const std::uint64_t flushed = saved_ | (std::uint64_t{1} << 24);  // FZ
+    asm volatile("msr fpcr, %0" : : "r"(flushed));
+  }
+  ~DenormalGuard() {
+    asm volatile("msr fpcr, %0" : : "r"(saved_));
+  }
+
+ private:
+  std::uint64_t saved_ = 0;
+#else
+  DenormalGuard() = default;
+#endif
+ public:
+  DenormalGuard(const DenormalGuard&) = delete;
+  DenormalGuard& operator=(const DenormalGuard&) = delete;
+};
+
+double FiniteOr(double v, double fallback) {
+  return std::isfinite(v) ? v : fallback;
+}
+
+// Pickup amplitude (full scale = 1) below which the resonator counts as silent: -120 dBFS.
+constexpr double kSilence = 1e-6;
+constexpr std::uint64_t kNoiseSeed = 0x9E3779B97F4A7C15ull;
+
+}  // namespace
+
+struct Scene::Impl {
+  double fs = 48000.0;
+  MaterialParams material{};
+  OutputParams output_params{};
+  ContactKernelConfig config{};
+  ModalState modes{};
+  ProbeDynamics probe{};
+  SurfaceReader reader{};
+  OutputStage output{};
+
+  // Gesture state set by the last command.
+  ProbeCommand gesture{};
+  double x_m = 0.0, y_m = 0.0;
+  double surface_m = 0.0;     // felt profile at the probe position (end of the last sample)
+  bool burst_flight = false;  // tip up, released by a burst: park once it leaves the surface
+  bool burst_touched = false;
+  int burst_samples = 0;
+  std::uint64_t noise_state = kNoiseSeed;
+
+  double Felt(double x, double y) const {
+    return reader.Felt(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
+                       material.probe.ball_radius_m, gesture.direction_x, gesture.direction_y);
+  }
+
+  double Uniform() {  // xorshift64*: uniform in [-1, 1)
+    noise_state ^= noise_state >> 12;
+    noise_state ^= noise_state << 25;
+    noise_state ^= noise_state >> 27;
+    const std::uint64_t r = noise_state * 0x2545F4914F6CDD1Dull;
+    return static_cast<double>(r >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+  }
+
+  void Reset() {
+    modes.Reset();
+    probe = ProbeDynamics{};
+    output.Reset();
+    gesture = ProbeCommand{};
+    x_m = y_m = 0.0;
+    surface_m = 0.0;
+    burst_flight = burst_touched = false;
+    burst_samples = 0;
+    noise_state = kNoiseSeed;
+  }
+
+  void Release(double velocity_mps) {
+    // The probe appears just touching the surface (x = 0) under the pen.
+    surface_m = Felt(x_m, y_m);
+    probe = ProbeDynamics{};
+    probe.active = true;
+    probe.height_m = surface_m + modes.ContactDisplacement();
+    probe.velocity_mps = velocity_mps;
+  }
+
+  void Apply(const ProbeCommand& raw) {
+    ProbeCommand c = raw;
+    c.x_m = FiniteOr(c.x_m, x_m);
+    c.y_m = FiniteOr(c.y_m, y_m);
+    c.velocity_mps = std::max(FiniteOr(c.velocity_mps, 0.0), 0.0);
+    c.normal_force_n = std::max(FiniteOr(c.normal_force_n, 0.0), 0.0);
+    c.width_mm = std::max(FiniteOr(c.width_mm, 0.5), 0.0);
+    c.penetration_m = std::max(FiniteOr(c.penetration_m, 0.0), 0.0);
+    c.landing_speed_mps = std::max(FiniteOr(c.landing_speed_mps, 0.0), 0.0);
+    c.burst_impulse_n_s = std::max(FiniteOr(c.burst_impulse_n_s, 0.0), 0.0);
+    const double norm = std::hypot(FiniteOr(c.direction_x, 0.0), FiniteOr(c.direction_y, 0.0));
+    if (norm > 0.0) {
+      c.direction_x /= norm;
+      c.direction_y /= norm;
+    } else {
+      c.direction_x = 1.0;
+      c.direction_y = 0.0;
+    }
+    const bool was_down = gesture.tip_down;
+    gesture = c;
+    x_m = c.x_m;
+    y_m = c.y_m;
+    if (c.tip_down && !was_down) {
+      Release(-c.landing_speed_mps);
+      burst_flight = false;
+    } else if (!c.tip_down && was_down) {
+      probe = ProbeDynamics{};  // lifted: parked, bristle relaxed
+    }
+    if (c.burst_impulse_n_s > 0.0) {
+      if (!probe.active) {
+        Release(0.0);
+        burst_flight = true;
+        burst_touched = false;
+        burst_samples = 0;
+      }
+      probe.velocity_mps -= c.burst_impulse_n_s / config.probe_mass_kg;
+    }
+  }
+
+  void RenderFrame(float* frame) {
+    x_m += gesture.velocity_mps * gesture.direction_x / fs;
+    y_m += gesture.velocity_mps * gesture.direction_y / fs;
+    if (probe.active) {
+      const double next = Felt(x_m, y_m);
+      SampleDrive drive;
+      drive.surface_begin_m = surface_m;
+      drive.surface_end_m = next;
+      drive.slide_velocity_mps = gesture.tip_down ? gesture.velocity_mps : 0.0;
+      drive.push_n = gesture.tip_down ? gesture.normal_force_n : 0.0;
+      drive.friction_share = SurfaceReader::FrictionShare(gesture.style, gesture.width_mm);
+      if (config.friction.enabled && config.friction.sigma3 > 0.0 &&
+          drive.slide_velocity_mps > 0.0) {
+        const double fn = drive.friction_share *
+                          (config.impact.enabled ? std::max(probe.normal_n, 0.0) : drive.push_n);
+        // Unit-variance uniform noise scaled by sqrt(|v| f_N) (Avanzini et al. 2005).
+        drive.noise_n = config.friction.sigma3 * 1.7320508075688772 * Uniform() *
+                        std::sqrt(drive.slide_velocity_mps * fn);
+      }
+      surface_m = next;
+      StepContactSample(config, modes, probe, drive);
+      if (burst_flight) {
+        ++burst_samples;
+        if (probe.touched || probe.compression_m > 0.0) burst_touched = true;
+        if ((burst_touched && probe.compression_m < 0.0) || burst_samples > fs) {
+          probe = ProbeDynamics{};
+          burst_flight = false;
+        }
+      }
+    } else {
+      AdvanceModes(modes, modes.full, 0.0);
+    }
+    output.Process(modes.PickupVelocity(), &frame[0], &frame[1]);
+  }
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+void Scene::Init(double sample_rate_hz) {
+  impl_->fs = sample_rate_hz > 0.0 && std::isfinite(sample_rate_hz) ? sample_rate_hz : 48000.0;
+  Prepare(impl_->material, impl_->output_params, HeightFieldView{});
+}
+
+void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
+                    const HeightFieldView& surface) {
+  Impl& s = *impl_;
+  s.material = material;
+  s.output_params = output;
+  MaterialParams& m = s.material;
+  if (!(m.probe.mass_kg > 0.0) || !std::isfinite(m.probe.mass_kg)) m.probe.mass_kg = 0.01;
+  if (!(m.impact.stiffness > 0.0) || !std::isfinite(m.impact.stiffness)) m.impact.enabled = false;
+  m.impact.dissipation_s_per_m = std::max(FiniteOr(m.impact.dissipation_s_per_m, 0.0), 0.0);
+  if (!(m.impact.shape_alpha >= 1.0) || !std::isfinite(m.impact.shape_alpha))
+    m.impact.shape_alpha = 1.5;
+  if (!(m.friction.bristle_stiffness > 0.0) || !std::isfinite(m.friction.bristle_stiffness))
+    m.friction.enabled = false;
+  m.friction.stribeck_velocity_mps =
+      std::max(FiniteOr(m.friction.stribeck_velocity_mps, 0.1), 1e-9);
+  m.friction.breakaway_ratio =
+      std::clamp(FiniteOr(m.friction.breakaway_ratio, 0.1), 1e-6, 1.0 - 1e-6);
+  s.config.impact.Set(m.impact);
+  s.config.friction.Set(m.friction);
+  s.config.probe_mass_kg = m.probe.mass_kg;
+  s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
+  s.modes.Prepare(m.resonator, s.fs, s.config.substeps);
+  s.reader.Prepare(surface);
+  s.output.Prepare(output, s.fs);
+  s.Reset();
+}
+
+void Scene::Reset() {
+  impl_->Reset();
+}
+
+void Scene::Process(const ProbeCommand* commands, int command_count, float* interleaved_out,
+                    int frames) {
+  DenormalGuard guard;
+  Impl& s = *impl_;
+  int next = 0;
+  if (commands == nullptr) command_count = 0;
+  for (int f = 0; f < frames; ++f) {
+    while (next < command_count &&
+           (commands[next].frame_offset <= static_cast<std::uint32_t>(f) || f == frames - 1)) {
+      s.Apply(commands[next]);
+      ++next;
+    }
+    s.RenderFrame(interleaved_out + 2 * static_cast<std::ptrdiff_t>(f));
+  }
+}
+
+double Scene::ResonatorEnergy() const {
+  return impl_->modes.Energy();
+}
+
+double Scene::TotalEnergy() const {
+  const Impl& s = *impl_;
+  double e = s.modes.Energy();
+  if (s.probe.active) {
+    const double m = s.config.probe_mass_kg;
+    const double push = s.gesture.tip_down ? s.gesture.normal_force_n : 0.0;
+    e += 0.5 * m * s.probe.velocity_mps * s.probe.velocity_mps + push * s.probe.height_m;
+    if (s.config.impact.enabled) e += s.config.impact.Potential(s.probe.compression_m);
+    e += 0.5 * s.config.friction.sigma0 * s.probe.bristle_m * s.probe.bristle_m;
+  }
+  return e;
+}
+
+bool Scene::IsIdle() const {
+  const Impl& s = *impl_;
+  if (s.probe.active) return false;
+  const double gain = std::max(
+      {std::fabs(s.output_params.sound_gain), std::fabs(s.output_params.haptic_gain), 1.0});
+  return s.modes.PickupAmplitudeBound() * gain < kSilence && s.output.FilterActivity() < kSilence;
+}
+
+SceneProbeState Scene::probe_state() const {
+  const Impl& s = *impl_;
+  SceneProbeState st;
+  st.active = s.probe.active;
+  st.height_m = s.probe.height_m;
+  st.velocity_mps = s.probe.velocity_mps;
+  st.compression_m = s.probe.compression_m;
+  st.normal_force_n = s.probe.normal_n;
+  st.friction_force_n = s.probe.friction_n;
+  st.bristle_m = s.probe.bristle_m;
+  st.surface_offset_m = s.surface_m;
+  st.x_m = s.x_m;
+  st.y_m = s.y_m;
+  st.substeps = s.probe.substeps_used;
+  return st;
+}
+
+double Scene::sample_rate_hz() const {
+  return impl_->fs;
+}
+int Scene::contact_oversample() const {
+  return impl_->config.substeps;
+}
+int Scene::active_mode_count() const {
+  return impl_->modes.count;
+}
+
+}  // namespace sas::synth

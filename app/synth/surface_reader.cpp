@@ -1,0 +1,116 @@
+// Profile under the probe: width window, roll envelope, penetration threshold (surface_reader.h).
+#include "synth/surface_reader.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sas::synth {
+
+void SurfaceReader::Prepare(const HeightFieldView& field) {
+  field_ = field;
+  max_height_m_ = 0.0;
+  if (field_.empty() || field_.summed_area == nullptr) {
+    field_ = HeightFieldView{};
+    return;
+  }
+  const std::size_t n = field_.size();
+  float highest = field_.height_m[0];
+  for (std::size_t i = 1; i < n; ++i) highest = std::max(highest, field_.height_m[i]);
+  max_height_m_ = static_cast<double>(highest);
+}
+
+double SurfaceReader::Integral(double px, double py) const {
+  // Bilinear interpolation of the summed-area table is the exact integral of the
+  // piecewise-constant field up to (px, py).
+  const int w = field_.width, hgt = field_.height;
+  const int ix = std::min(static_cast<int>(px), w - 1);
+  const int iy = std::min(static_cast<int>(py), hgt - 1);
+  const double fx = px - ix, fy = py - iy;
+  const auto stride = static_cast<std::size_t>(w) + 1;
+  const double* s = field_.summed_area;
+  const auto at = [&](int x, int y) {
+    return s[static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)];
+  };
+  const double s00 = at(ix, iy), s10 = at(ix + 1, iy), s01 = at(ix, iy + 1),
+               s11 = at(ix + 1, iy + 1);
+  return s00 * (1.0 - fx) * (1.0 - fy) + s10 * fx * (1.0 - fy) + s01 * (1.0 - fx) * fy +
+         s11 * fx * fy;
+}
+
+double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
+  if (field_.empty()) return 0.0;
+  const double pitch = field_.pitch_m;
+  const double w = static_cast<double>(field_.width), hgt = static_cast<double>(field_.height);
+  // Window at least one pixel wide: a point probe reads the pixel it is on.
+  const double half = 0.5 * std::max(width_m / pitch, 1.0);
+  double cx = std::clamp(x_m / pitch, 0.0, w);
+  double x0 = cx - half, x1 = cx + half;
+  // Shift (not shrink) the window at the edges so its width, hence its smoothing, stays the same.
+  if (x0 < 0.0) {
+    x1 = std::min(x1 - x0, w);
+    x0 = 0.0;
+  }
+  if (x1 > w) {
+    x0 = std::max(x0 - (x1 - w), 0.0);
+    x1 = w;
+  }
+  double y0 = 0.0, y1 = hgt;
+  if (field_.height > 1) {
+    const double cy = std::clamp(y_m / pitch, 0.0, hgt);
+    y0 = cy - half;
+    y1 = cy + half;
+    if (y0 < 0.0) {
+      y1 = std::min(y1 - y0, hgt);
+      y0 = 0.0;
+    }
+    if (y1 > hgt) {
+      y0 = std::max(y0 - (y1 - hgt), 0.0);
+      y1 = hgt;
+    }
+  }
+  const double area = (x1 - x0) * (y1 - y0);
+  if (!(area > 0.0)) return 0.0;
+  const double sum = Integral(x1, y1) - Integral(x0, y1) - Integral(x1, y0) + Integral(x0, y0);
+  return sum / area;
+}
+
+double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetration_m,
+                           ProbeStyle style, double ball_radius_m, double direction_x,
+                           double direction_y) const {
+  if (field_.empty()) return 0.0;
+  double h = 0.0;
+  if (style == ProbeStyle::kRoll) {
+    // Bottom of a ball of radius r rolling along the stroke: max over |s| <= r of
+    // profile(p + s·dir) + sqrt(r² - s²) - r, sampled at the field pitch (at most 129 points).
+    const double r = std::max(ball_radius_m, 0.5 * width_m);
+    const int half_count = std::clamp(static_cast<int>(r / field_.pitch_m), 1, 64);
+    const double ds = r / half_count;
+    const double norm = std::hypot(direction_x, direction_y);
+    const double dx = norm > 0.0 ? direction_x / norm : 1.0;
+    const double dy = norm > 0.0 ? direction_y / norm : 0.0;
+    h = -1e300;
+    for (int i = -half_count; i <= half_count; ++i) {
+      const double s = i * ds;
+      const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
+      h = std::max(h, BoxMean(x_m + s * dx, y_m + s * dy, width_m) + lift);
+    }
+  } else {
+    h = BoxMean(x_m, y_m, width_m);
+  }
+  const double threshold = max_height_m_ - std::max(penetration_m, 0.0);
+  return std::max(h - threshold, 0.0);
+}
+
+double SurfaceReader::FrictionShare(ProbeStyle style, double width_mm) {
+  switch (style) {
+    case ProbeStyle::kRoll:
+      return 0.0;
+    case ProbeStyle::kRub:
+      return 1.0;
+    case ProbeStyle::kScrape:
+    default:
+      return 0.3 + 0.7 * std::clamp((width_mm - 0.5) / 7.5, 0.0, 1.0);
+  }
+}
+
+}  // namespace sas::synth

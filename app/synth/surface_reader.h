@@ -1,0 +1,41 @@
+#pragma once
+// Surface reader: the profile height the probe feels at a point of a height field (paper §4,
+// "sliding parameters"). Chain: box average of the field over the probe width (summed-area table,
+// O(1), exact integral of the piecewise-constant field over a fractional window, so the result
+// moves continuously with the probe) -> style (scrape/rub: the averaged profile; roll: the envelope
+// traced by the bottom of a ball of radius r rolling over it) -> penetration threshold (only what
+// rises above h_max - penetration is felt: felt = max(h - (h_max - penetration), 0)).
+// Styles also set how much of the normal force the friction sees ("friction share"): roll = 0
+// (rolling does not slide), rub = 1, scrape = 0.3 rising to 1 as the width grows to 8 mm — the
+// paper's tilt control blends scratching into rubbing by width.
+
+#include "synth/height_field_view.h"
+#include "synth/probe_command.h"
+
+namespace sas::synth {
+
+class SurfaceReader {
+ public:
+  // Scans the field once for its highest point. Not real-time.
+  void Prepare(const HeightFieldView& field);
+
+  // Mean height (m) over a square window of side width_m centred at (x_m, y_m); positions outside
+  // the field are clamped to its edge; a one-row field is averaged along x only.
+  double BoxMean(double x_m, double y_m, double width_m) const;
+
+  // Felt profile under the probe for this style (see above), >= 0.
+  double Felt(double x_m, double y_m, double width_m, double penetration_m, ProbeStyle style,
+              double ball_radius_m, double direction_x, double direction_y) const;
+
+  static double FrictionShare(ProbeStyle style, double width_mm);
+
+  double max_height_m() const { return max_height_m_; }
+
+ private:
+  double Integral(double px, double py) const;  // ∫∫ over [0,px]×[0,py] (pixel units)
+
+  HeightFieldView field_{};
+  double max_height_m_ = 0.0;
+};
+
+}  // namespace sas::synth
