@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Installs the kiosk's .deb into a fresh Debian 12 root (debootstrap, minbase), checks that the
+# unit, udev rules, user and configuration land in place, removes it with `apt-get remove`, and
+# checks that nothing the package made is left. Needs root, debootstrap and the Debian archive.
+#   check_deb_in_chroot.sh <package.deb> [<pristine debootstrap root to copy>]
+set -euo pipefail
+deb="$(realpath "$1")"
+pristine="${2:-}"
+work="$(mktemp -d /tmp/sas-deb-root.XXXXXX)"
+root="$work/root"
+cleanup() {
+  umount "$root/proc" 2>/dev/null || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+if [ -n "$pristine" ]; then
+  cp -a "$pristine" "$root"
+else
+  debootstrap --variant=minbase bookworm "$root" http://deb.debian.org/debian >/dev/null
+fi
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+mount -t proc proc "$root/proc"
+in_root() { chroot "$root" env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive "$@"; }
+
+cp "$deb" "$root/tmp/kiosk.deb"
+in_root apt-get update -q >/dev/null
+# Install the dependencies first so the before/after comparison sees only what the package made.
+deps="$(dpkg-deb -f "$deb" Depends | sed -E 's/\([^)]*\)//g; s/,/ /g')"
+in_root apt-get install -y -q --no-install-recommends $deps >/dev/null
+snapshot() {
+  (cd "$root" && find . -xdev \( -path ./proc -o -path ./tmp -o -path ./var/cache -o -path ./var/lib/apt \
+    -o -path ./var/lib/dpkg -o -path ./var/log -o -path ./run \) -prune -o -print | sort |
+    grep -vE '^\./etc/(passwd|group|shadow|gshadow)-$')  # shadow-utils' own backups of the admin's files
+  grep -E '^(sas-kiosk|gpio|render|plugdev|input|video|audio):' "$root/etc/passwd" "$root/etc/group" || true
+}
+snapshot > "$work/before.txt"
+
+in_root apt-get install -y -q "/tmp/kiosk.deb" >/dev/null
+fail=0
+for path in usr/bin/sketch-a-scratch usr/lib/systemd/system/sketch-a-scratch.service \
+            usr/lib/udev/rules.d/60-sketch-a-scratch.rules etc/sketch-a-scratch/kiosk.toml \
+            etc/systemd/system/multi-user.target.wants/sketch-a-scratch.service; do
+  if [ -e "$root/$path" ] || [ -L "$root/$path" ]; then echo "installed: /$path"; else echo "MISSING: /$path"; fail=1; fi
+done
+if in_root getent passwd sas-kiosk >/dev/null; then
+  echo "installed: user sas-kiosk in groups: $(in_root id -nG sas-kiosk)"
+else
+  echo "MISSING: user sas-kiosk"; fail=1
+fi
+in_root sketch-a-scratch --version
+unit=/usr/lib/systemd/system/sketch-a-scratch.service
+if verify="$(in_root systemd-analyze verify "$unit" 2>&1)" && [ -z "$verify" ]; then
+  echo "systemd-analyze verify: clean"
+else
+  echo "FAIL: systemd-analyze verify: $verify"; fail=1
+fi
+if exposure="$(in_root systemd-analyze security --offline=true --threshold=15 "$unit" 2>&1 | tail -n 1)"; then
+  echo "installed unit: $exposure"
+else
+  echo "FAIL: installed unit: $exposure"; fail=1
+fi
+
+in_root apt-get remove -y -q sketch-a-scratch >/dev/null
+snapshot > "$work/after.txt"
+if ! diff "$work/before.txt" "$work/after.txt"; then
+  echo "FAIL: apt-get remove left the differences above"; fail=1
+else
+  echo "apt-get remove left nothing behind"
+fi
+exit "$fail"
