@@ -132,6 +132,12 @@ struct Scene::Impl {
       c.direction_y = 0.0;
     }
     const bool was_down = gesture.tip_down;
+    // Friction is computed along the stroke: when the stroke turns, the bristle deflection keeps
+    // its component along the new direction (a reversal flips its sign; a projection never adds
+    // energy).
+    const double turn = gesture.direction_x * c.direction_x + gesture.direction_y * c.direction_y;
+    probe.bristle_m *= turn;
+    probe.friction_n *= turn;
     gesture = c;
     x_m = c.x_m;
     y_m = c.y_m;
