@@ -1,0 +1,301 @@
+// Acceptance 5 of issue 3 (block rendering = per-sample rendering bit for bit; Reset() = a fresh
+// instance) plus the properties of the output stage (|sample| <= 1, never NaN, haptic band,
+// haptic path off) and of the surface reader (width window, penetration, roll envelope).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "synth/output_stage.h"
+#include "synth/scene.h"
+#include "synth/surface_reader.h"
+#include "synth_test_support.h"
+
+using namespace sas::synth;
+
+namespace {
+
+constexpr double kFs = 48000.0;
+
+MaterialParams Wood() {
+  MaterialParams m;
+  m.resonator.mode_count = 12;
+  for (int i = 0; i < 12; ++i) {
+    auto& mode = m.resonator.modes[static_cast<std::size_t>(i)];
+    mode.frequency_hz = 220.0 * (i + 1) * (1.0 + 0.07 * i);
+    mode.decay_s = 0.3 / (1.0 + i);
+    mode.mass_kg = 0.03;
+    mode.gain = 1.0 / (1.0 + 0.5 * i);
+  }
+  m.impact.stiffness = 3e7;
+  m.impact.dissipation_s_per_m = 0.4;
+  m.friction.noise_coefficient = 0.5;  // exercise the noise generator too
+  return m;
+}
+
+// A bumpy 1-D profile: 4000 samples (0.6 m) of ridges up to 50 µm.
+std::vector<float> BumpyProfile() {
+  std::vector<float> h(4000);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double x = static_cast<double>(i);
+    h[i] = static_cast<float>(25e-6 * (1.0 + std::sin(0.37 * x) * std::sin(0.051 * x)));
+  }
+  return h;
+}
+
+// A gesture with every kind of event, at absolute frames.
+struct TimedCommand {
+  long frame;
+  ProbeCommand command;
+};
+std::vector<TimedCommand> Gesture() {
+  std::vector<TimedCommand> g;
+  ProbeCommand c;
+  c.tip_down = true;
+  c.x_m = 0.01;
+  c.velocity_mps = 0.2;
+  c.normal_force_n = 0.8;
+  c.penetration_m = 40e-6;
+  c.width_mm = 0.4;
+  c.landing_speed_mps = 0.3;
+  g.push_back({0, c});
+  c.x_m = 0.02;
+  c.style = ProbeStyle::kRub;
+  c.width_mm = 4.0;
+  c.velocity_mps = 0.6;
+  g.push_back({1777, c});
+  c.x_m = 0.05;
+  c.style = ProbeStyle::kRoll;
+  c.direction_x = -1.0;
+  g.push_back({5000, c});
+  c.burst_impulse_n_s = 2e-4;
+  g.push_back({5000, c});  // two commands at the same frame
+  c.burst_impulse_n_s = 0.0;
+  c.tip_down = false;
+  g.push_back({9001, c});
+  c.burst_impulse_n_s = 5e-4;  // a bubble popping with the pen up
+  g.push_back({12000, c});
+  c.burst_impulse_n_s = 0.0;
+  c.tip_down = true;
+  c.style = ProbeStyle::kScrape;
+  c.direction_x = 1.0;
+  c.velocity_mps = 1.5;
+  g.push_back({15000, c});
+  return g;
+}
+
+std::vector<float> Render(Scene& scene, const std::vector<TimedCommand>& gesture, long total,
+                          int block) {
+  std::vector<float> out(2 * static_cast<std::size_t>(total));
+  std::vector<ProbeCommand> pending;
+  std::size_t next = 0;
+  for (long start = 0; start < total; start += block) {
+    const int frames = static_cast<int>(std::min<long>(block, total - start));
+    pending.clear();
+    while (next < gesture.size() && gesture[next].frame < start + frames) {
+      ProbeCommand c = gesture[next].command;
+      c.frame_offset = static_cast<std::uint32_t>(gesture[next].frame - start);
+      pending.push_back(c);
+      ++next;
+    }
+    scene.Process(pending.data(), static_cast<int>(pending.size()),
+                  out.data() + 2 * static_cast<std::size_t>(start), frames);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("block rendering equals per-sample rendering bit for bit", "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, BumpyProfile());
+  const long total = 24000;
+  std::vector<float> reference;
+  for (const int block : {1, 7, 64, 128, 480, 24000}) {
+    Scene scene;
+    scene.Init(kFs);
+    scene.Prepare(Wood(), OutputParams{}, field.view);
+    const auto out = Render(scene, Gesture(), total, block);
+    if (reference.empty()) {
+      reference = out;
+      float peak = 0.0f;
+      for (float s : out) peak = std::max(peak, std::fabs(s));
+      REQUIRE(peak > 1e-3f);  // the gesture makes sound
+      continue;
+    }
+    INFO("block " << block);
+    CHECK(std::memcmp(out.data(), reference.data(), out.size() * sizeof(float)) == 0);
+  }
+}
+
+TEST_CASE("Reset() makes a used scene render exactly like a fresh one", "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, BumpyProfile());
+  Scene fresh, used;
+  for (Scene* s : {&fresh, &used}) {
+    s->Init(kFs);
+    s->Prepare(Wood(), OutputParams{}, field.view);
+  }
+  Render(used, Gesture(), 20000, 256);
+  used.Reset();
+  const auto a = Render(fresh, Gesture(), 20000, 256);
+  const auto b = Render(used, Gesture(), 20000, 256);
+  CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+TEST_CASE("output never exceeds 1 nor becomes NaN with exaggerated gains and hostile commands",
+          "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, BumpyProfile());
+  OutputParams loud;
+  loud.sound_gain = 1e6;
+  loud.haptic_gain = 1e6;
+  Scene scene;
+  scene.Init(kFs);
+  scene.Prepare(Wood(), loud, field.view);
+  auto gesture = Gesture();
+  ProbeCommand bad;
+  bad.tip_down = true;
+  bad.x_m = std::numeric_limits<double>::quiet_NaN();
+  bad.velocity_mps = std::numeric_limits<double>::infinity();
+  bad.normal_force_n = -3.0;
+  bad.width_mm = std::numeric_limits<double>::quiet_NaN();
+  bad.burst_impulse_n_s = std::numeric_limits<double>::infinity();
+  gesture.push_back({20000, bad});
+  const auto out = Render(scene, gesture, 30000, 128);
+  float peak = 0.0f;
+  for (float s : out) {
+    REQUIRE(std::isfinite(s));
+    REQUIRE(std::fabs(s) <= 1.0f);
+    peak = std::max(peak, std::fabs(s));
+  }
+  CHECK(peak > 0.9f);  // the gain really was exaggerated
+}
+
+TEST_CASE("soft limiter is the identity below the knee, odd, monotone and bounded by 1", "[dsp]") {
+  double previous = -1.0;
+  for (double x = -1e9; x < 1e9;) {
+    const double y = OutputStage::SoftLimit(x);
+    REQUIRE(std::fabs(y) <= 1.0);
+    REQUIRE(y >= previous);
+    REQUIRE(OutputStage::SoftLimit(-x) == -y);
+    if (std::fabs(x) <= OutputStage::kKnee) REQUIRE(y == x);
+    previous = y;
+    x = x < -1e-3 ? x * 0.9 : (x < 1e-3 ? x + 1e-4 : x * 1.1 + 1e-3);
+  }
+  CHECK(OutputStage::SoftLimit(std::numeric_limits<double>::quiet_NaN()) == 0.0);
+  CHECK(OutputStage::SoftLimit(std::numeric_limits<double>::infinity()) == 1.0);
+}
+
+TEST_CASE(
+    "haptic channel passes 40-800 Hz, rejects 2 kHz by more than 40 dB, and is silent "
+    "when disabled",
+    "[dsp]") {
+  auto gain_at = [](double f, bool enabled) {
+    OutputParams p;
+    p.haptic_enabled = enabled;
+    p.sound_gain = 1.0;
+    p.haptic_gain = 1.0;
+    OutputStage stage;
+    stage.Prepare(p, kFs);
+    double in_power = 0.0, out_power = 0.0;
+    for (int n = 0; n < 48000; ++n) {
+      const double x = 0.1 * std::sin(2.0 * std::numbers::pi * f * n / kFs);
+      float sound = 0.0f, haptic = 0.0f;
+      stage.Process(x, &sound, &haptic);
+      if (n >= 24000) {
+        in_power += x * x;
+        out_power += static_cast<double>(haptic) * haptic;
+      }
+    }
+    return 10.0 * std::log10(out_power / in_power + 1e-300);
+  };
+  CHECK(std::fabs(gain_at(200.0, true)) < 1.0);
+  CHECK(std::fabs(gain_at(100.0, true)) < 1.0);
+  CHECK(gain_at(2000.0, true) < -40.0);
+  CHECK(gain_at(10.0, true) < -20.0);
+  CHECK(gain_at(200.0, false) < -290.0);  // exactly zero
+}
+
+TEST_CASE(
+    "surface reader: width window is the exact mean, penetration thresholds, roll "
+    "bridges pits narrower than the ball",
+    "[dsp]") {
+  const double pitch = 1e-4;
+  std::vector<float> h(100, 0.0f);
+  for (int i = 0; i < 100; ++i) h[static_cast<std::size_t>(i)] = static_cast<float>(1e-6 * (i % 7));
+  test::OwnedField field(100, 1, pitch, h);
+  SurfaceReader reader;
+  reader.Prepare(field.view);
+  CHECK(reader.max_height_m() == Approx(6e-6));
+  // Window of 5 pixels aligned with pixel edges: the plain mean of those pixels.
+  double sum = 0.0;
+  for (int i = 40; i < 45; ++i) sum += h[static_cast<std::size_t>(i)];
+  CHECK(reader.BoxMean(42.5 * pitch, 0.0, 5.0 * pitch) == Approx(sum / 5.0).epsilon(1e-12));
+  // Continuous in position: tiny moves give tiny changes.
+  const double a = reader.BoxMean(30.0 * pitch, 0.0, 3.3 * pitch);
+  const double b = reader.BoxMean(30.0001 * pitch, 0.0, 3.3 * pitch);
+  CHECK(std::fabs(a - b) < 1e-9);
+  // Penetration: only what rises above h_max - penetration is felt.
+  CHECK(reader.Felt(6.5 * pitch, 0.0, 0.0, 0.0, ProbeStyle::kScrape, 0.0, 1.0, 0.0) == 0.0);
+  CHECK(reader.Felt(6.5 * pitch, 0.0, 0.0, 2e-6, ProbeStyle::kScrape, 0.0, 1.0, 0.0) ==
+        Approx(2e-6).epsilon(1e-6));
+  CHECK(reader.Felt(3.5 * pitch, 0.0, 0.0, 2e-6, ProbeStyle::kScrape, 0.0, 1.0, 0.0) == 0.0);
+
+  // A 2-pixel-wide, 50 µm deep pit: a scraping point falls in, a 2 mm ball does not.
+  std::vector<float> pit(200, 50e-6f);
+  pit[100] = pit[101] = 0.0f;
+  test::OwnedField pit_field(200, 1, pitch, pit);
+  reader.Prepare(pit_field.view);
+  const double x = 101.0 * pitch;
+  const double scrape = reader.Felt(x, 0.0, 0.0, 1e-3, ProbeStyle::kScrape, 2e-3, 1.0, 0.0);
+  const double roll = reader.Felt(x, 0.0, 0.0, 1e-3, ProbeStyle::kRoll, 2e-3, 1.0, 0.0);
+  const double flat =
+      reader.Felt(50.0 * pitch, 0.0, 0.0, 1e-3, ProbeStyle::kScrape, 2e-3, 1.0, 0.0);
+  CHECK(flat - scrape == Approx(50e-6).epsilon(1e-6));
+  // The 1-pixel window smears the pit's edges by half a pixel, so the ball rests on the rims
+  // 2 pixels from the centre and sinks by its sagitta r - sqrt(r² - (2p)²) ≈ 10 µm, not 50 µm.
+  const double r = 2e-3, half_width = 2.0 * pitch;
+  CHECK(flat - roll == Approx(r - std::sqrt(r * r - half_width * half_width)).epsilon(1e-6));
+}
+
+TEST_CASE("2-D fields are averaged over a square window", "[dsp]") {
+  std::vector<float> h(10 * 10);
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 10; ++x)
+      h[static_cast<std::size_t>(y * 10 + x)] = static_cast<float>(x + 10 * y);
+  test::OwnedField field(10, 10, 1.0, h);
+  SurfaceReader reader;
+  reader.Prepare(field.view);
+  // Window [3, 6) x [4, 7): mean of x in {3,4,5} plus 10 * mean of y in {4,5,6}.
+  CHECK(reader.BoxMean(4.5, 5.5, 3.0) == Approx(4.0 + 50.0).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "the scene goes idle after the pen is lifted and the sound has decayed, and wakes on "
+    "the next touch",
+    "[dsp][render]") {
+  Scene scene;
+  scene.Init(kFs);
+  scene.Prepare(Wood(), OutputParams{}, HeightFieldView{});
+  CHECK(scene.IsIdle());
+  std::vector<float> out(2 * 48000);
+  ProbeCommand tap;
+  tap.tip_down = true;
+  tap.landing_speed_mps = 0.5;
+  tap.normal_force_n = 0.3;
+  scene.Process(&tap, 1, out.data(), 4800);
+  CHECK(!scene.IsIdle());
+  ProbeCommand lift;
+  scene.Process(&lift, 1, out.data(), 4800);
+  CHECK(!scene.IsIdle());  // still ringing
+  CHECK(scene.ResonatorEnergy() > 0.0);
+  for (int i = 0; i < 20 && !scene.IsIdle(); ++i) scene.Process(nullptr, 0, out.data(), 48000);
+  REQUIRE(scene.IsIdle());
+  scene.Process(nullptr, 0, out.data(), 4800);
+  float peak = 0.0f;
+  for (int i = 0; i < 2 * 4800; ++i)
+    peak = std::max(peak, std::fabs(out[static_cast<std::size_t>(i)]));
+  CHECK(peak < 1e-6f);  // -120 dBFS
+  scene.Process(&tap, 1, out.data(), 480);
+  CHECK(!scene.IsIdle());
+}
