@@ -1,0 +1,189 @@
+// The kiosk Session state machine (see session.h for the rules).
+#include "kiosk/session.h"
+
+#include <algorithm>
+
+namespace sas::kiosk {
+
+Session::Session(const SessionConfig& config) : config_(config) {
+  config_.texture_count = std::max(config_.texture_count, 1);
+  config_.default_texture = ClampTexture(config_.default_texture);
+  surface_ = {false, config_.default_texture};
+  counters_.strokes_per_texture.assign(static_cast<std::size_t>(config_.texture_count), 0);
+}
+
+int Session::ClampTexture(int texture) const {
+  return std::clamp(texture, 0, config_.texture_count - 1);
+}
+
+void Session::Emit(SessionAction::Kind kind) {
+  actions_.push_back({kind});
+}
+
+void Session::Speak(Cue cue, int texture) {
+  SessionAction action{SessionAction::Kind::kSpeak};
+  action.cue = cue;
+  action.surface = {false, texture};
+  actions_.push_back(action);
+}
+
+void Session::Show(SurfaceChoice surface, bool speak_name) {
+  if (surface == surface_) return;
+  surface_ = surface;
+  SessionAction action{SessionAction::Kind::kShowSurface};
+  action.surface = surface;
+  actions_.push_back(action);
+  if (speak_name && !surface.voice) Speak(Cue::kTextureName, surface.texture);
+}
+
+// Any visitor activity: leaves the attract screen (a new visit) and restarts the idle timer.
+void Session::Activity(double now_s) {
+  last_activity_s_ = now_s;
+  if (mode_ == SessionMode::kAttract) {
+    mode_ = SessionMode::kExploring;
+    ++counters_.sessions;
+    Emit(SessionAction::Kind::kLeaveAttract);
+  }
+}
+
+void Session::OnPen(double now_s, bool tip_down) {
+  Activity(now_s);
+  if (tip_down && !tip_down_) {
+    if (surface_.voice) {
+      ++counters_.voice_strokes;
+    } else {
+      ++counters_.strokes_per_texture[static_cast<std::size_t>(surface_.texture)];
+    }
+  }
+  tip_down_ = tip_down;
+}
+
+void Session::OnTokenSelection(double now_s, int texture) {
+  Activity(now_s);
+  token_texture_ = texture < 0 ? -1 : ClampTexture(texture);
+  // A token placed while recording does not interrupt the take; it applies afterwards.
+  if (mode_ == SessionMode::kCountdown || mode_ == SessionMode::kRecording) return;
+  Show({false, token_texture_ < 0 ? config_.default_texture : token_texture_}, true);
+}
+
+void Session::CancelRecordingFlow(bool speak_description) {
+  if (mode_ == SessionMode::kRecording) Emit(SessionAction::Kind::kCancelRecording);
+  mode_ = SessionMode::kExploring;
+  if (speak_description) {
+    Speak(Cue::kTextureDescription, surface_.voice ? config_.default_texture : surface_.texture);
+  }
+}
+
+void Session::OnRecordButton(double now_s, bool pressed) {
+  Activity(now_s);
+  if (pressed == button_down_) return;  // repeated level, not an edge
+  button_down_ = pressed;
+  if (!pressed) return;
+  button_down_since_s_ = now_s;
+  hold_handled_ = false;
+  switch (mode_) {
+    case SessionMode::kExploring:
+    case SessionMode::kAttract:
+      mode_ = SessionMode::kCountdown;
+      phase_started_s_ = now_s;
+      Speak(Cue::kRecordCountdown, surface_.texture);
+      break;
+    case SessionMode::kCountdown:
+      // Second press: the visitor wants to know more, not to record.
+      hold_handled_ = true;
+      CancelRecordingFlow(true);
+      break;
+    case SessionMode::kRecording:
+      // A press while recording ends the take early.
+      Emit(SessionAction::Kind::kStopRecording);
+      mode_ = SessionMode::kExploring;
+      break;
+  }
+}
+
+void Session::OnRecordingFinished(double now_s, RecordingOutcome outcome) {
+  Activity(now_s);
+  mode_ = SessionMode::kExploring;
+  switch (outcome) {
+    case RecordingOutcome::kOk:
+      ++counters_.recordings;
+      has_voice_ = true;
+      surface_ = {false, -1};  // force the cross-fade even from a previous voice surface
+      Show({true, 0}, false);
+      Speak(Cue::kVoiceReady, 0);
+      return;
+    case RecordingOutcome::kSilent:
+      Speak(Cue::kRecordingTooQuiet, surface_.texture);
+      break;
+    case RecordingOutcome::kClipped:
+      Speak(Cue::kRecordingTooLoud, surface_.texture);
+      break;
+    case RecordingOutcome::kNoMicrophone:
+      Speak(Cue::kRecordingUnavailable, surface_.texture);
+      break;
+  }
+  ++counters_.failed_recordings;
+}
+
+void Session::OnStaffChord(double now_s) {
+  last_activity_s_ = now_s;
+  staff_panel_open_ = !staff_panel_open_;
+  SessionAction action{SessionAction::Kind::kStaffPanel};
+  action.open = staff_panel_open_;
+  actions_.push_back(action);
+}
+
+void Session::Tick(double now_s) {
+  if (button_down_ && !hold_handled_ && now_s - button_down_since_s_ >= config_.long_hold_s) {
+    hold_handled_ = true;
+    last_activity_s_ = now_s;
+    CancelRecordingFlow(true);
+  }
+  if (mode_ == SessionMode::kCountdown && now_s - phase_started_s_ >= config_.countdown_s) {
+    mode_ = SessionMode::kRecording;
+    phase_started_s_ = now_s;
+    Emit(SessionAction::Kind::kStartRecording);
+  } else if (mode_ == SessionMode::kRecording && now_s - phase_started_s_ >= config_.record_max_s) {
+    mode_ = SessionMode::kExploring;  // the recorder reports back through OnRecordingFinished
+    Emit(SessionAction::Kind::kStopRecording);
+  }
+  // The idle reset never interrupts a recording in progress, nor the staff at work.
+  const bool busy = mode_ == SessionMode::kCountdown || mode_ == SessionMode::kRecording ||
+                    staff_panel_open_ || tip_down_;
+  if (mode_ != SessionMode::kAttract && !busy &&
+      now_s - last_activity_s_ >= config_.idle_timeout_s) {
+    mode_ = SessionMode::kAttract;
+    if (has_voice_) {
+      has_voice_ = false;
+      Emit(SessionAction::Kind::kWipeVoice);
+    }
+    Emit(SessionAction::Kind::kResetTextures);
+    // Issue 7: back to the default texture. A token left on a switch is picked up again as soon
+    // as it is lifted and placed (the switches report edges).
+    Show({false, config_.default_texture}, false);
+    Emit(SessionAction::Kind::kEnterAttract);
+  }
+}
+
+std::vector<SessionAction> Session::TakeActions() {
+  std::vector<SessionAction> taken;
+  taken.swap(actions_);
+  return taken;
+}
+
+double Session::SecondsLeft(double now_s) const {
+  if (mode_ == SessionMode::kCountdown) {
+    return std::max(0.0, config_.countdown_s - (now_s - phase_started_s_));
+  }
+  if (mode_ == SessionMode::kRecording) {
+    return std::max(0.0, config_.record_max_s - (now_s - phase_started_s_));
+  }
+  return 0.0;
+}
+
+void Session::RestoreCounters(const UsageCounters& counters) {
+  counters_ = counters;
+  counters_.strokes_per_texture.resize(static_cast<std::size_t>(config_.texture_count), 0);
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,203 @@
+// The Session state machine: each visitor-facing rule of issue 7, driven with explicit times.
+#include <algorithm>
+#include <catch2/catch.hpp>
+
+#include "kiosk/session.h"
+
+using sas::kiosk::Cue;
+using sas::kiosk::RecordingOutcome;
+using sas::kiosk::Session;
+using sas::kiosk::SessionAction;
+using sas::kiosk::SessionConfig;
+using sas::kiosk::SessionMode;
+using Kind = SessionAction::Kind;
+
+namespace {
+
+SessionConfig Config() {
+  SessionConfig config;
+  config.texture_count = 4;
+  config.default_texture = 2;
+  config.idle_timeout_s = 60.0;
+  config.countdown_s = 3.0;
+  config.record_max_s = 5.0;
+  config.long_hold_s = 1.2;
+  return config;
+}
+
+int Count(const std::vector<SessionAction>& actions, Kind kind) {
+  return static_cast<int>(std::count_if(actions.begin(), actions.end(),
+                                        [kind](const auto& a) { return a.kind == kind; }));
+}
+
+const SessionAction* Find(const std::vector<SessionAction>& actions, Kind kind) {
+  for (const auto& action : actions) {
+    if (action.kind == kind) return &action;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("a placed token cross-fades to its texture and speaks its name", "[kiosk]") {
+  Session session(Config());
+  REQUIRE(session.mode() == SessionMode::kAttract);
+  session.OnTokenSelection(1.0, 3);
+  const auto actions = session.TakeActions();
+  REQUIRE(Count(actions, Kind::kLeaveAttract) == 1);
+  const auto* show = Find(actions, Kind::kShowSurface);
+  REQUIRE(show != nullptr);
+  CHECK(show->surface.texture == 3);
+  const auto* speak = Find(actions, Kind::kSpeak);
+  REQUIRE(speak != nullptr);
+  CHECK(speak->cue == Cue::kTextureName);
+  CHECK(speak->surface.texture == 3);
+  CHECK(session.surface().texture == 3);
+  // Lifting the token returns to the default texture.
+  session.OnTokenSelection(2.0, -1);
+  CHECK(session.surface().texture == 2);
+}
+
+TEST_CASE("choosing the texture already shown neither cross-fades nor repeats its name",
+          "[kiosk]") {
+  Session session(Config());
+  session.OnTokenSelection(1.0, 1);
+  session.TakeActions();
+  session.OnTokenSelection(1.5, 1);
+  CHECK(session.TakeActions().empty());
+}
+
+TEST_CASE("record press counts down, records, and a good take becomes the surface", "[kiosk]") {
+  Session session(Config());
+  session.OnPen(0.5, false);
+  session.OnRecordButton(1.0, true);
+  session.OnRecordButton(1.1, false);
+  CHECK(session.mode() == SessionMode::kCountdown);
+  CHECK(session.SecondsLeft(2.0) == Approx(2.0));
+  session.Tick(3.9);
+  CHECK(Count(session.TakeActions(), Kind::kStartRecording) == 0);
+  session.Tick(4.0);
+  CHECK(session.mode() == SessionMode::kRecording);
+  CHECK(Count(session.TakeActions(), Kind::kStartRecording) == 1);
+  session.Tick(9.0);  // 5 s later the take ends by itself
+  CHECK(Count(session.TakeActions(), Kind::kStopRecording) == 1);
+  session.OnRecordingFinished(9.1, RecordingOutcome::kOk);
+  const auto actions = session.TakeActions();
+  const auto* show = Find(actions, Kind::kShowSurface);
+  REQUIRE(show != nullptr);
+  CHECK(show->surface.voice);
+  CHECK(session.has_voice());
+  CHECK(session.counters().recordings == 1);
+}
+
+TEST_CASE("a silent or clipped take keeps the previous surface and says why", "[kiosk]") {
+  for (const auto outcome : {RecordingOutcome::kSilent, RecordingOutcome::kClipped}) {
+    Session session(Config());
+    session.OnTokenSelection(0.0, 0);
+    session.OnRecordButton(1.0, true);
+    session.OnRecordButton(1.1, false);
+    session.Tick(4.0);
+    session.Tick(9.0);
+    session.TakeActions();
+    session.OnRecordingFinished(9.1, outcome);
+    const auto actions = session.TakeActions();
+    CHECK(Find(actions, Kind::kShowSurface) == nullptr);
+    const auto* speak = Find(actions, Kind::kSpeak);
+    REQUIRE(speak != nullptr);
+    CHECK(speak->cue == (outcome == RecordingOutcome::kSilent ? Cue::kRecordingTooQuiet
+                                                              : Cue::kRecordingTooLoud));
+    CHECK_FALSE(session.surface().voice);
+    CHECK(session.surface().texture == 0);
+    CHECK(session.counters().failed_recordings == 1);
+  }
+}
+
+TEST_CASE("a second press during the countdown or a long hold speaks the description instead",
+          "[kiosk]") {
+  SECTION("second press") {
+    Session session(Config());
+    session.OnTokenSelection(0.0, 1);
+    session.OnRecordButton(1.0, true);
+    session.OnRecordButton(1.2, false);
+    session.OnRecordButton(1.5, true);
+    const auto actions = session.TakeActions();
+    const auto speaks = std::count_if(actions.begin(), actions.end(), [](const auto& a) {
+      return a.kind == Kind::kSpeak && a.cue == Cue::kTextureDescription && a.surface.texture == 1;
+    });
+    CHECK(speaks == 1);
+    CHECK(session.mode() == SessionMode::kExploring);
+    session.Tick(10.0);
+    CHECK(Count(session.TakeActions(), Kind::kStartRecording) == 0);
+  }
+  SECTION("long hold") {
+    Session session(Config());
+    session.OnTokenSelection(0.0, 1);
+    session.OnRecordButton(1.0, true);
+    session.Tick(2.0);
+    CHECK(session.mode() == SessionMode::kCountdown);
+    session.TakeActions();
+    session.Tick(2.3);
+    const auto actions = session.TakeActions();
+    REQUIRE(Find(actions, Kind::kSpeak) != nullptr);
+    CHECK(Find(actions, Kind::kSpeak)->cue == Cue::kTextureDescription);
+    CHECK(session.mode() == SessionMode::kExploring);
+    session.Tick(2.5);  // still held: spoken once only
+    CHECK(session.TakeActions().empty());
+  }
+}
+
+TEST_CASE("after the idle timeout the voice is wiped, bubbles reset, default texture, attract",
+          "[kiosk]") {
+  Session session(Config());
+  session.OnTokenSelection(0.0, 3);
+  session.OnRecordButton(1.0, true);
+  session.OnRecordButton(1.1, false);
+  session.Tick(4.0);
+  session.Tick(9.0);
+  session.OnRecordingFinished(9.0, RecordingOutcome::kOk);
+  session.OnPen(10.0, true);
+  session.OnPen(12.0, false);
+  session.TakeActions();
+  session.Tick(71.9);
+  CHECK(session.TakeActions().empty());
+  session.Tick(72.0);
+  const auto actions = session.TakeActions();
+  CHECK(Count(actions, Kind::kWipeVoice) == 1);
+  CHECK(Count(actions, Kind::kResetTextures) == 1);
+  CHECK(Count(actions, Kind::kEnterAttract) == 1);
+  CHECK_FALSE(session.has_voice());
+  CHECK(session.mode() == SessionMode::kAttract);
+  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 2});
+  // Any touch leaves the attract screen at once and starts a new visit.
+  session.OnPen(80.0, true);
+  CHECK(Count(session.TakeActions(), Kind::kLeaveAttract) == 1);
+  CHECK(session.counters().sessions == 2);
+}
+
+TEST_CASE("the idle reset waits while the pen is down, a take is running or staff are at work",
+          "[kiosk]") {
+  Session session(Config());
+  session.OnPen(0.0, true);
+  session.Tick(100.0);
+  CHECK(session.mode() == SessionMode::kExploring);
+  session.OnPen(100.0, false);
+  session.OnStaffChord(101.0);
+  session.Tick(300.0);
+  CHECK(session.mode() == SessionMode::kExploring);
+  session.OnStaffChord(300.0);
+  session.Tick(360.0);
+  CHECK(session.mode() == SessionMode::kAttract);
+}
+
+TEST_CASE("strokes are counted per texture and for the voice surface", "[kiosk]") {
+  Session session(Config());
+  session.OnTokenSelection(0.0, 1);
+  for (int i = 0; i < 3; ++i) {
+    session.OnPen(1.0 + i, true);
+    session.OnPen(1.5 + i, false);
+  }
+  session.OnPen(5.0, false);  // a second "up" is not a stroke
+  session.OnTokenSelection(6.0, 0);
+  session.OnPen(7.0, true);
+  CHECK(session.counters().strokes_per_texture == std::vector<std::uint64_t>{1, 3, 0, 0});
+}
