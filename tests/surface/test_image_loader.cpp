@@ -11,20 +11,20 @@ using sas::surface::LoadGrayImage;
 TEST_CASE("a 16-bit gradient PNG loads as luminance scaled to [0, 1] pixel for pixel",
           "[surface]") {
   sas::test::TempDir dir;
-  cv::Mat gradient(3, 5, CV_16UC1);
+  cv::Mat gradient(9, 16, CV_16UC1);
   for (int y = 0; y < gradient.rows; ++y) {
     for (int x = 0; x < gradient.cols; ++x) {
-      gradient.at<uint16_t>(y, x) = static_cast<uint16_t>(x * 16383 + y);
+      gradient.at<uint16_t>(y, x) = static_cast<uint16_t>(x * 4000 + y);
     }
   }
   const std::string path = dir.file("gradient.png");
   REQUIRE(cv::imwrite(path, gradient));
   const auto image = LoadGrayImage(path);
-  REQUIRE(image.width == 5);
-  REQUIRE(image.height == 3);
-  for (int y = 0; y < 3; ++y) {
-    for (int x = 0; x < 5; ++x) {
-      CHECK(image.at(x, y) == Approx((x * 16383 + y) / 65535.0).margin(1e-6));
+  REQUIRE(image.width == 16);
+  REQUIRE(image.height == 9);
+  for (int y = 0; y < 9; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      CHECK(image.at(x, y) == Approx((x * 4000 + y) / 65535.0).margin(1e-6));
     }
   }
 }

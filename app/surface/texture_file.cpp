@@ -1,0 +1,177 @@
+// Texture file loading and validation with toml++ (see texture_file.h).
+#include "surface/texture_file.h"
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <set>
+
+#include "surface/image_loader.h"  // LoadError, ReadFileBytes
+
+namespace sas::surface {
+namespace {
+
+// Error context: the file, and where a node sits in it.
+class Checker {
+ public:
+  explicit Checker(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void Fail(const toml::source_region& where, const std::string& key,
+                         const std::string& why) const {
+    throw LoadError(path_ + ":" + std::to_string(where.begin.line) + ":" +
+                    std::to_string(where.begin.column) + ": " + key + ": " + why);
+  }
+
+  // Rejects any key of `table` not in `allowed`.
+  void OnlyKeys(const toml::table& table, const std::string& prefix,
+                std::initializer_list<std::string_view> allowed) const {
+    for (const auto& [key, node] : table) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end()) {
+        Fail(key.source(), prefix + std::string(key.str()), "unknown key");
+      }
+    }
+  }
+
+  const toml::node& Need(const toml::table& table, const toml::source_region& table_where,
+                         const std::string& prefix, std::string_view key) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) Fail(table_where, prefix + std::string(key), "missing required key");
+    return *node;
+  }
+
+  std::string String(const toml::table& table, const toml::source_region& where,
+                     const std::string& prefix, std::string_view key) const {
+    const toml::node& node = Need(table, where, prefix, key);
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value)
+      Fail(node.source(), prefix + std::string(key), "must be a string");
+    if (value->empty()) Fail(node.source(), prefix + std::string(key), "must not be empty");
+    return *value;
+  }
+
+  double Number(const toml::table& table, const toml::source_region& where,
+                const std::string& prefix, std::string_view key, double lo, double hi) const {
+    const toml::node& node = Need(table, where, prefix, key);
+    if (!node.is_number()) Fail(node.source(), prefix + std::string(key), "must be a number");
+    const double value = *node.value<double>();
+    if (!(value >= lo && value <= hi)) {
+      Fail(node.source(), prefix + std::string(key),
+           "value " + std::to_string(value) + " outside [" + std::to_string(lo) + ", " +
+               std::to_string(hi) + "]");
+    }
+    return value;
+  }
+
+  const toml::table& Table(const toml::table& table, const toml::source_region& where,
+                           std::string_view key) const {
+    const toml::node& node = Need(table, where, "", key);
+    if (!node.is_table())
+      Fail(node.source(), std::string(key), "must be a table [" + std::string(key) + "]");
+    return *node.as_table();
+  }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace
+
+TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw LoadError(path + ":" + std::to_string(e.source().begin.line) + ":" +
+                    std::to_string(e.source().begin.column) + ": " + std::string(e.description()));
+  }
+  const Checker check(path);
+  const toml::source_region top{{1, 1}, {1, 1}, nullptr};
+  check.OnlyKeys(root, "",
+                 {"name", "description", "material", "picture", "height_map", "height_scale_mm",
+                  "relief_mm", "gains", "probe", "bubbles"});
+  TextureFile t;
+  t.name = check.String(root, top, "", "name");
+  t.description = check.String(root, top, "", "description");
+  {
+    const auto& d = t.description;
+    const auto where = root.get("description")->source();
+    if (d.size() > 240) check.Fail(where, "description", "longer than 240 characters");
+    const auto stop = d.find_first_of(".!?");
+    if (stop == std::string::npos || stop != d.size() - 1) {
+      check.Fail(where, "description", "must be exactly one sentence ending in '.', '!' or '?'");
+    }
+  }
+  t.material = check.String(root, top, "", "material");
+  static constexpr std::array<std::string_view, 4> kMaterials = {"bubble_wrap", "glass", "wood",
+                                                                 "dry_soil"};
+  if (std::find(kMaterials.begin(), kMaterials.end(), t.material) == kMaterials.end()) {
+    check.Fail(root.get("material")->source(), "material",
+               "'" + t.material + "' is not one of bubble_wrap, glass, wood, dry_soil");
+  }
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  t.picture_path = (folder / check.String(root, top, "", "picture")).string();
+  t.height_map_path = (folder / check.String(root, top, "", "height_map")).string();
+  t.height_scale_mm = check.Number(root, top, "", "height_scale_mm", 0.001, 50.0);
+  t.relief_mm = check.Number(root, top, "", "relief_mm", 0.0, 10.0);
+
+  const toml::table& gains = check.Table(root, top, "gains");
+  check.OnlyKeys(gains, "gains.", {"sound_gain_db", "haptic_gain_db"});
+  t.gains.sound_gain_db =
+      check.Number(gains, gains.source(), "gains.", "sound_gain_db", -60.0, 24.0);
+  t.gains.haptic_gain_db =
+      check.Number(gains, gains.source(), "gains.", "haptic_gain_db", -60.0, 24.0);
+
+  const toml::table& probe = check.Table(root, top, "probe");
+  check.OnlyKeys(probe, "probe.", {"width_mm", "penetration_mm", "style"});
+  t.probe.width_mm = check.Number(probe, probe.source(), "probe.", "width_mm", 0.01, 50.0);
+  t.probe.penetration_mm =
+      check.Number(probe, probe.source(), "probe.", "penetration_mm", 0.0, 10.0);
+  const std::string style = check.String(probe, probe.source(), "probe.", "style");
+  if (style == "scrape") {
+    t.probe.style = synth::ProbeStyle::kScrape;
+  } else if (style == "rub") {
+    t.probe.style = synth::ProbeStyle::kRub;
+  } else if (style == "roll") {
+    t.probe.style = synth::ProbeStyle::kRoll;
+  } else {
+    check.Fail(probe.get("style")->source(), "probe.style",
+               "'" + style + "' is not scrape, rub or roll");
+  }
+
+  if (const toml::node* node = root.get("bubbles")) {
+    if (t.material != "bubble_wrap") {
+      check.Fail(node->source(), "bubbles", "only a bubble_wrap texture has bubbles");
+    }
+    if (!node->is_table()) check.Fail(node->source(), "bubbles", "must be a table [bubbles]");
+    const toml::table& b = *node->as_table();
+    check.OnlyKeys(
+        b, "bubbles.",
+        {"pop_force_n", "layout", "pitch_px", "radius_px", "origin_x_px", "origin_y_px"});
+    BubbleSettings s;
+    s.pop_force_n = check.Number(b, b.source(), "bubbles.", "pop_force_n", 0.05, 50.0);
+    const std::string layout = check.String(b, b.source(), "bubbles.", "layout");
+    if (layout != "hexagonal") {
+      check.Fail(b.get("layout")->source(), "bubbles.layout", "only 'hexagonal' is supported");
+    }
+    s.layout.pitch_px = check.Number(b, b.source(), "bubbles.", "pitch_px", 4.0, 4096.0);
+    s.layout.radius_px = check.Number(b, b.source(), "bubbles.", "radius_px", 1.0, 2048.0);
+    if (s.layout.radius_px * 2.0 > s.layout.pitch_px) {
+      check.Fail(b.get("radius_px")->source(), "bubbles.radius_px",
+                 "bubbles would overlap (2 r > pitch)");
+    }
+    s.layout.origin_x_px = check.Number(b, b.source(), "bubbles.", "origin_x_px", -4096.0, 16384.0);
+    s.layout.origin_y_px = check.Number(b, b.source(), "bubbles.", "origin_y_px", -4096.0, 16384.0);
+    t.bubbles = s;
+  } else if (t.material == "bubble_wrap") {
+    check.Fail(top, "bubbles", "missing required table for a bubble_wrap texture");
+  }
+  return t;
+}
+
+TextureFile LoadTextureFile(const std::string& path) {
+  const auto bytes = ReadFileBytes(path, 1U << 20);
+  return ParseTextureFile(std::string(bytes.begin(), bytes.end()), path);
+}
+
+}  // namespace sas::surface
