@@ -1,0 +1,67 @@
+// Atomic file replacement with write + fsync + rename + directory fsync (see atomic_file.h).
+#include "kiosk/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+namespace sas::kiosk {
+namespace {
+
+bool Fail(std::string* error, const std::string& what, int err) {
+  if (error) *error = what + ": " + std::strerror(err);
+  return false;
+}
+
+}  // namespace
+
+bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path directory =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::string temp = (directory / ("." + target.filename().string() + ".XXXXXX")).string();
+  const int fd = mkstemp(temp.data());
+  if (fd < 0) return Fail(error, "cannot create a temporary file next to " + path, errno);
+  const auto abandon = [&](const std::string& what, int err) {
+    close(fd);
+    unlink(temp.c_str());
+    return Fail(error, what, err);
+  };
+  const char* data = contents.data();
+  std::size_t left = contents.size();
+  while (left > 0) {
+    const ssize_t written = write(fd, data, left);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return abandon("writing " + path, errno);
+    }
+    data += written;
+    left -= static_cast<std::size_t>(written);
+  }
+  // mkstemp creates 0600; the files we keep are readable by staff tools.
+  if (fchmod(fd, 0644) != 0) return abandon("setting permissions of " + path, errno);
+  if (fsync(fd) != 0) return abandon("flushing " + path + " to disk", errno);
+  if (close(fd) != 0) {
+    const int err = errno;
+    unlink(temp.c_str());
+    return Fail(error, "closing " + path, err);
+  }
+  if (rename(temp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    unlink(temp.c_str());
+    return Fail(error, "replacing " + path, err);
+  }
+  // Make the rename itself durable.
+  const int dir_fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd >= 0) {
+    fsync(dir_fd);
+    close(dir_fd);
+  }
+  return true;
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,16 @@
+#pragma once
+// Crash- and disk-full-safe file replacement: the new contents go to a temporary file in the same
+// directory, are flushed to disk (fsync), and only then renamed over the old file (rename is
+// atomic on POSIX file systems), after which the directory entry is synced too. A power cut,
+// SIGKILL or a full disk at any point leaves either the complete old file or the complete new one,
+// never a truncated mix: the kiosk's configuration and counters survive months of daily restarts.
+
+#include <string>
+
+namespace sas::kiosk {
+
+// Returns true on success; on failure returns false, leaves `path` untouched, removes the
+// temporary file and puts a readable reason in `error`.
+bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error);
+
+}  // namespace sas::kiosk

@@ -1,0 +1,115 @@
+// Usage counters survive a round trip, damage is reported, and a full disk never loses the last
+// good file (the write is atomic).
+#include <sys/resource.h>
+#include <catch2/catch.hpp>
+#include <csignal>
+#include <fstream>
+#include <sstream>
+
+#include "kiosk/atomic_file.h"
+#include "kiosk/counters_file.h"
+#include "support/temp_dir.h"
+
+using sas::kiosk::UsageCounters;
+
+namespace {
+
+const std::vector<std::string> kNames = {"bubble_wrap", "broken_glass", "wooden_board",
+                                         "cracked_ground"};
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+UsageCounters Sample() {
+  UsageCounters counters;
+  counters.strokes_per_texture = {12, 0, 7, 123456789012ULL};
+  counters.voice_strokes = 4;
+  counters.recordings = 3;
+  counters.failed_recordings = 1;
+  counters.sessions = 9;
+  return counters;
+}
+
+// Limits the size of files this process may write, as a full disk would; SIGXFSZ is ignored so
+// write() fails with EFBIG instead of killing the test.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit = saved_;
+    limit.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*previous_handler_)(int) = nullptr;
+};
+
+}  // namespace
+
+TEST_CASE("usage counters survive a save and load round trip", "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.file("counters.toml");
+  std::string error;
+  REQUIRE(sas::kiosk::SaveCounters(path, Sample(), kNames, &error));
+  UsageCounters loaded;
+  REQUIRE(sas::kiosk::LoadCounters(path, kNames, &loaded, &error));
+  CHECK(loaded == Sample());
+}
+
+TEST_CASE("a missing counters file starts from zero; a damaged one is reported", "[kiosk]") {
+  sas::test::TempDir dir;
+  UsageCounters loaded;
+  std::string error;
+  REQUIRE(sas::kiosk::LoadCounters(dir.file("none.toml"), kNames, &loaded, &error));
+  CHECK(loaded.sessions == 0);
+  CHECK(loaded.strokes_per_texture.size() == 4);
+  const auto damaged = dir.Write("bad.toml", "sessions = 3\nrecordings = lots\n");
+  CHECK_FALSE(sas::kiosk::LoadCounters(damaged, kNames, &loaded, &error));
+  CHECK_THAT(error, Catch::Contains("bad.toml:2") && Catch::Contains("recordings"));
+  CHECK(loaded.sessions == 0);
+}
+
+TEST_CASE("a full disk while saving leaves the previous counters file intact", "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.file("counters.toml");
+  std::string error;
+  REQUIRE(sas::kiosk::SaveCounters(path, Sample(), kNames, &error));
+  const std::string before = ReadAll(path);
+  UsageCounters bigger = Sample();
+  bigger.sessions = 10;
+  bool saved = true;
+  {
+    FileSizeLimit limit(16);  // far smaller than the file
+    saved = sas::kiosk::SaveCounters(path, bigger, kNames, &error);
+  }
+  CHECK_FALSE(saved);
+  CHECK_THAT(error, Catch::Contains("counters.toml"));
+  CHECK(ReadAll(path) == before);
+  // No temporary file is left behind.
+  int entries = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    ++entries;
+  }
+  CHECK(entries == 1);
+}
+
+TEST_CASE("atomic write replaces the whole file and reports an unwritable directory", "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("f.txt", "old contents that are longer than the new ones");
+  std::string error;
+  REQUIRE(sas::kiosk::AtomicWriteFile(path, "new", &error));
+  CHECK(ReadAll(path) == "new");
+  CHECK_FALSE(sas::kiosk::AtomicWriteFile(dir.file("missing-dir/f.txt"), "x", &error));
+  CHECK_THAT(error, Catch::Contains("missing-dir"));
+}
