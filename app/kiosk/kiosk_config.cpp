@@ -1,6 +1,8 @@
 // Kiosk configuration loading and validation with toml++ (see kiosk_config.h).
 #include "kiosk/kiosk_config.h"
 
+#include "kiosk/atomic_file.h"
+
 #include <toml++/toml.h>
 #include <cmath>
 #include <fstream>
@@ -111,6 +113,48 @@ KioskConfig LoadKioskConfig(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   return ParseKioskConfig(text.str(), path);
+}
+
+}  // namespace sas::kiosk
+
+namespace sas::kiosk {
+
+ConfigLoadResult LoadKioskConfigWithFallback(const std::string& path,
+                                             const std::string& last_good_path) {
+  ConfigLoadResult result;
+  std::string text;
+  try {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw ConfigError(path + ": cannot open configuration file");
+    std::ostringstream buffer;
+    buffer << file.rdbuf();
+    text = buffer.str();
+    result.config = ParseKioskConfig(text, path);
+    result.source = ConfigLoadResult::Source::kFile;
+  } catch (const ConfigError& error) {
+    result.problem = error.what();
+  }
+  if (result.source == ConfigLoadResult::Source::kFile) {
+    if (!last_good_path.empty()) {
+      std::string ignored;  // failing to keep a backup must not stop the kiosk
+      AtomicWriteFile(last_good_path, text, &ignored);
+    }
+    return result;
+  }
+  if (!last_good_path.empty()) {
+    try {
+      result.config = LoadKioskConfig(last_good_path);
+      result.source = ConfigLoadResult::Source::kLastGood;
+      result.problem += " (using the last good configuration)";
+      return result;
+    } catch (const ConfigError&) {
+      // fall through to the defaults
+    }
+  }
+  result.config = KioskConfig{};
+  result.source = ConfigLoadResult::Source::kDefaults;
+  result.problem += " (using the built-in defaults)";
+  return result;
 }
 
 }  // namespace sas::kiosk

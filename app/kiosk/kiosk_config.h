@@ -33,3 +33,20 @@ KioskConfig LoadKioskConfig(const std::string& path);
 KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_name);
 
 }  // namespace sas::kiosk
+
+namespace sas::kiosk {
+
+// The result of loading the configuration at start: the kiosk always gets a usable one.
+struct ConfigLoadResult {
+  KioskConfig config;
+  enum class Source { kFile, kLastGood, kDefaults } source = Source::kDefaults;
+  std::string problem;  // empty when the file loaded; else the error, for journal + staff panel
+};
+
+// Loads `path`. When it is valid, a copy is kept at `last_good_path` (atomically). When it is
+// missing or bad, the last good copy is used, else the built-in defaults; `problem` says which
+// and why. Never throws.
+ConfigLoadResult LoadKioskConfigWithFallback(const std::string& path,
+                                             const std::string& last_good_path);
+
+}  // namespace sas::kiosk

@@ -63,3 +63,30 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.idle_timeout_s == defaults.idle_timeout_s);
   CHECK(shipped.default_texture == defaults.default_texture);
 }
+
+TEST_CASE("a bad configuration falls back to the last good one, else to the defaults, and says so",
+          "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.file("kiosk.toml");
+  const auto last_good = dir.file("last-good.toml");
+  using Source = sas::kiosk::ConfigLoadResult::Source;
+
+  // No file and no backup yet: defaults, with the reason.
+  auto result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  CHECK(result.source == Source::kDefaults);
+  CHECK_THAT(result.problem, Catch::Contains("kiosk.toml") && Catch::Contains("defaults"));
+
+  // A good file loads and is kept as the last good copy.
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 20\n");
+  result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  CHECK(result.source == Source::kFile);
+  CHECK(result.problem.empty());
+  CHECK(result.config.sound_gain_db == 20.0);
+
+  // Staff break the file: the last good values stay in force and the error names the line.
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 20\nsound_gain_db_typo = 3\n");
+  result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  CHECK(result.source == Source::kLastGood);
+  CHECK(result.config.sound_gain_db == 20.0);
+  CHECK_THAT(result.problem, Catch::Contains("kiosk.toml:3") && Catch::Contains("last good"));
+}
