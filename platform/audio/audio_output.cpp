@@ -1,0 +1,157 @@
+// Callback core, supervisor with back-off, offline renderer (see audio_output.h).
+#include "platform/audio/audio_output.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "platform/common/clock.h"
+
+namespace sas::platform {
+
+void AudioCallbackCore::Run(float* interleaved, int frames, int channels, bool xrun) noexcept {
+  const std::int64_t start_ns = MonotonicNowNs();
+  renderer_->Render(interleaved, frames, channels);
+  const std::int64_t end_ns = MonotonicNowNs();
+  const std::int64_t took_ns = end_ns - start_ns;
+  // Only this thread writes the counters: relaxed load + store, no read-modify-write contention.
+  callbacks_.store(callbacks_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  frames_.store(frames_.load(std::memory_order_relaxed) + static_cast<std::uint64_t>(frames),
+                std::memory_order_relaxed);
+  if (xrun) xruns_.store(xruns_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  last_ns_.store(took_ns, std::memory_order_relaxed);
+  if (took_ns > max_ns_.load(std::memory_order_relaxed))
+    max_ns_.store(took_ns, std::memory_order_relaxed);
+  heartbeat_ns_.store(end_ns, std::memory_order_release);
+}
+
+AudioCallbackStats AudioCallbackCore::Stats() const noexcept {
+  AudioCallbackStats s;
+  s.heartbeat_ns = heartbeat_ns_.load(std::memory_order_acquire);
+  s.callbacks = callbacks_.load(std::memory_order_relaxed);
+  s.frames = frames_.load(std::memory_order_relaxed);
+  s.xruns = xruns_.load(std::memory_order_relaxed);
+  s.last_callback_ns = last_ns_.load(std::memory_order_relaxed);
+  s.max_callback_ns = max_ns_.load(std::memory_order_relaxed);
+  return s;
+}
+
+SupervisedAudioOutput::SupervisedAudioOutput(std::unique_ptr<AudioStreamBackend> backend,
+                                             AudioRenderer& renderer, AudioOutputConfig config,
+                                             DeviceStatusBoard& board, std::string device_key)
+    : backend_(std::move(backend)),
+      core_(renderer),
+      config_(std::move(config)),
+      board_(&board),
+      key_(std::move(device_key)) {}
+
+SupervisedAudioOutput::~SupervisedAudioOutput() {
+  Stop();
+}
+
+bool SupervisedAudioOutput::TryOpen(std::string* error) {
+  if (!backend_->Open(config_, core_, error)) return false;
+  running_ = true;
+  last_callbacks_ = core_.Stats().callbacks;
+  last_progress_ns_ = MonotonicNowNs();
+  backoff_s_ = 0.0;
+  return true;
+}
+
+namespace {
+
+std::string Describe(const AudioOutputConfig& c, const char* backend) {
+  return std::string(backend) + " '" + c.device + "' " + std::to_string(c.channels) + " ch " +
+         std::to_string(c.sample_rate_hz) + " Hz, " + std::to_string(c.frames_per_buffer) +
+         "-frame buffer";
+}
+
+}  // namespace
+
+bool SupervisedAudioOutput::Start() {
+  stopped_ = false;
+  std::string error;
+  if (TryOpen(&error)) {
+    ever_opened_ = true;
+    board_->Set(key_, DeviceState::kOk, "playing on " + Describe(config_, backend_->Name()),
+                backend_->Name());
+    return true;
+  }
+  board_->AddFailure(key_);
+  board_->Set(key_, DeviceState::kMissing, error + "; running silent, retrying", backend_->Name());
+  backoff_s_ = config_.reopen_backoff_initial_s;
+  next_retry_ns_ = MonotonicNowNs() + static_cast<std::int64_t>(backoff_s_ * 1e9);
+  return false;
+}
+
+void SupervisedAudioOutput::Stop() {
+  if (running_) backend_->Close();
+  running_ = false;
+  stopped_ = true;
+}
+
+double SupervisedAudioOutput::NextRetryInS(std::int64_t now_ns) const {
+  if (running_ || stopped_) return 0.0;
+  return std::max(0.0, static_cast<double>(next_retry_ns_ - now_ns) * 1e-9);
+}
+
+void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
+  if (stopped_) return;
+  if (running_) {
+    const AudioCallbackStats stats = core_.Stats();
+    board_->SetEvents(key_, stats.xruns);
+    if (stats.callbacks != last_callbacks_) {
+      last_callbacks_ = stats.callbacks;
+      last_progress_ns_ = now_ns;
+    }
+    const bool stalled =
+        now_ns - last_progress_ns_ > static_cast<std::int64_t>(config_.stall_timeout_s * 1e9);
+    if (backend_->Healthy() && !stalled) return;
+    backend_->Close();
+    running_ = false;
+    board_->AddFailure(key_);
+    backoff_s_ = config_.reopen_backoff_initial_s;
+    next_retry_ns_ = now_ns + static_cast<std::int64_t>(backoff_s_ * 1e9);
+    board_->Set(key_, DeviceState::kLost,
+                std::string(stalled ? "no audio callbacks for " : "stream stopped: ") +
+                    (stalled ? std::to_string(config_.stall_timeout_s) + " s" : "device gone") +
+                    "; running silent, reopening with back-off",
+                backend_->Name());
+    return;
+  }
+  if (now_ns < next_retry_ns_) return;
+  std::string error;
+  if (TryOpen(&error)) {
+    if (ever_opened_) board_->AddReconnect(key_);
+    board_->Set(key_, DeviceState::kOk,
+                std::string(ever_opened_ ? "reopened " : "playing on ") +
+                    Describe(config_, backend_->Name()),
+                backend_->Name());
+    ever_opened_ = true;
+    return;
+  }
+  // Failed retries do not log again (the state stays lost/missing); they only count and back off.
+  board_->AddFailure(key_);
+  backoff_s_ = std::min(config_.reopen_backoff_max_s,
+                        std::max(config_.reopen_backoff_initial_s, backoff_s_ * 2.0));
+  next_retry_ns_ = now_ns + static_cast<std::int64_t>(backoff_s_ * 1e9);
+}
+
+OfflineAudioOutput::OfflineAudioOutput(AudioRenderer& renderer, AudioOutputConfig config)
+    : core_(renderer), config_(std::move(config)) {
+  block_.resize(static_cast<std::size_t>(config_.frames_per_buffer * config_.channels));
+}
+
+bool OfflineAudioOutput::Start() {
+  running_ = true;
+  return true;
+}
+
+void OfflineAudioOutput::RenderBlocks(int blocks) {
+  buffer_.reserve(buffer_.size() + block_.size() * static_cast<std::size_t>(blocks));
+  for (int b = 0; b < blocks; ++b) {
+    core_.Run(block_.data(), config_.frames_per_buffer, config_.channels, false);
+    buffer_.insert(buffer_.end(), block_.begin(), block_.end());
+  }
+}
+
+}  // namespace sas::platform
