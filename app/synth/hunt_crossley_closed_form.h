@@ -10,6 +10,7 @@ struct ImpactClosedForm {
   double restitution = 0.0;        // e = |v_out| / v_in, depends only on μ·v_in
   double exit_speed_mps = 0.0;     // |v_out|
   double max_compression_m = 0.0;  // x at v = 0
+  double contact_time_s = 0.0;     // first touch to separation
 };
 
 // Coefficient of restitution for u_in = μ·v_in >= 0. Solves u_out - ln(1 + u_out) = u_in -
@@ -19,6 +20,15 @@ double HuntCrossleyRestitution(double mu_times_v_in);
 
 // Maximum compression for mass_kg, stiffness k (N/m^α), μ (s/m), shape α, entry speed v_in > 0.
 double HuntCrossleyMaxCompression(double mass_kg, double k, double mu, double alpha, double v_in);
+
+// Compression along the phase-plane trajectory at velocity v (v_out <= v <= v_in).
+double HuntCrossleyCompressionAt(double mass_kg, double k, double mu, double alpha, double v_in,
+                                 double v);
+
+// Contact time. λ = 0: the Gamma-function closed form; λ > 0: the 1-D quadrature
+// t_c = ∫ m dv / (x(v)^α (k + λ v)) from v_out to v_in, with the endpoint singularities (x -> 0)
+// removed by the substitution v = v_end ∓ w^(α+1) and Gauss–Legendre on each half.
+double HuntCrossleyContactTime(double mass_kg, double k, double mu, double alpha, double v_in);
 
 ImpactClosedForm HuntCrossleyImpact(double mass_kg, double k, double mu, double alpha, double v_in);
 
