@@ -81,7 +81,7 @@ ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& optio
     seen += histogram[static_cast<std::size_t>(bin)];
     if (seen >= wanted) break;
   }
-  const double quantile = bin_scale > 0.0 ? (bin + 1) / bin_scale : 0.0;
+  const double quantile = bin_scale > 0.0 ? std::min(max_gradient, (bin + 1) / bin_scale) : 0.0;
   const double floor = options.noise_floor_per_px;
   // A picture with no change above the floor is a flat surface, not noise stretched to full relief.
   const double saturation = std::max(quantile, 2.0 * floor + 1e-6);

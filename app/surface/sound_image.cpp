@@ -46,7 +46,7 @@ float PixelValue(const std::vector<float>& s, std::size_t count, std::size_t chu
 }
 
 [[noreturn]] void CsvFail(const std::string& name, std::size_t line, const std::string& why) {
-  throw LoadError("vibration '" + name + "':" + std::to_string(line) + ": " + why);
+  throw LoadError("vibration " + name + ":" + std::to_string(line) + ": " + why);
 }
 
 bool ParseDouble(std::string_view text, double& value) {

@@ -1,0 +1,223 @@
+// Sound -> image -> profile (paper figure 3) and sound/vibration -> profile (issue 5, acceptance
+// 2).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "support/temp_dir.h"
+#include "surface/image_surface.h"
+#include "surface/sound_image.h"
+
+using namespace sas::surface;
+
+namespace {
+
+std::vector<float> Sine(std::size_t n, double period_samples, double amplitude = 0.8) {
+  std::vector<float> s(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s[i] = static_cast<float>(
+        amplitude * std::sin(2.0 * std::numbers::pi * static_cast<double>(i) / period_samples));
+  }
+  return s;
+}
+
+// Sound image -> height field (luminance relief) -> the profile along one row.
+std::vector<float> RowOfSoundImage(const GrayImage& image, int row) {
+  ReliefOptions options;
+  options.source = ReliefSource::kLuminance;
+  options.relief_mm = 1.0;
+  const auto profile = RowProfile(SurfaceFromImage(image, options).field, row);
+  return profile.heights_m();
+}
+
+// Positions of upward crossings of the profile's mean, linearly interpolated.
+std::vector<double> UpCrossings(const std::vector<float>& p) {
+  double mean = 0.0;
+  for (float v : p) mean += v;
+  mean /= static_cast<double>(p.size());
+  std::vector<double> out;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const double a = p[i - 1] - mean, b = p[i] - mean;
+    if (a < 0.0 && b >= 0.0) out.push_back(static_cast<double>(i - 1) + a / (a - b));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a sine tone keeps its period through sound -> image -> profile, with and without expansion",
+    "[surface]") {
+  const double period = 48.0;  // 1 kHz at 48 kHz
+  const auto tone = Sine(48000, period);
+  for (const int expansion : {1, 2, 4}) {
+    SoundImageOptions options;
+    options.samples_per_row = 480;
+    options.row_length_px = 480 * expansion;
+    const auto image = SoundToImage(tone, options);
+    REQUIRE(image.width == 480 * expansion);
+    REQUIRE(image.height == 100);
+    for (const int row : {0, 37, 99}) {
+      const auto crossings = UpCrossings(RowOfSoundImage(image, row));
+      REQUIRE(crossings.size() >= 8);
+      for (std::size_t i = 1; i < crossings.size(); ++i) {
+        CHECK(std::fabs(crossings[i] - crossings[i - 1] - period * expansion) <= 1.0);
+      }
+    }
+  }
+}
+
+TEST_CASE("a click train keeps its click positions through sound -> image -> profile",
+          "[surface]") {
+  std::vector<float> clicks(4800, 0.0f);
+  std::vector<std::size_t> where;
+  for (std::size_t i = 37; i < clicks.size(); i += 331) {
+    clicks[i] = 0.9f;
+    where.push_back(i);
+  }
+  for (const int expansion : {1, 3}) {
+    SoundImageOptions options;
+    options.samples_per_row = 1200;
+    options.row_length_px = 1200 * expansion;
+    const auto image = SoundToImage(clicks, options);
+    for (const std::size_t click : where) {
+      const int row = static_cast<int>(click / 1200);
+      const auto profile = RowOfSoundImage(image, row);
+      const auto peak = std::max_element(profile.begin(), profile.end());
+      // Expected pixel: the click's sample index within its row, times the expansion, at the centre
+      // of the pixels that sample covers.
+      const double expected = (static_cast<double>(click % 1200) + 0.5) * expansion - 0.5;
+      // Find the local maximum nearest to the expected position.
+      const auto lo = static_cast<std::size_t>(std::max(0.0, expected - 3.0 * expansion));
+      const auto hi =
+          std::min(profile.size() - 1, static_cast<std::size_t>(expected + 3.0 * expansion));
+      std::size_t best = lo;
+      for (std::size_t x = lo; x <= hi; ++x) {
+        if (profile[x] > profile[best]) best = x;
+      }
+      CHECK(std::fabs(static_cast<double>(best) - expected) <= 1.0);
+      CHECK(profile[best] == Approx(*peak));  // every click is as tall as the tallest
+    }
+  }
+}
+
+TEST_CASE("inversion turns each pixel's luminance L into 1 - L", "[surface]") {
+  const auto tone = Sine(2000, 50.0);
+  SoundImageOptions plain;
+  plain.samples_per_row = 500;
+  plain.row_length_px = 500;
+  SoundImageOptions inverted = plain;
+  inverted.invert = true;
+  const auto a = SoundToImage(tone, plain), b = SoundToImage(tone, inverted);
+  REQUIRE(a.luminance.size() == b.luminance.size());
+  for (std::size_t i = 0; i < a.luminance.size(); ++i) {
+    REQUIRE(a.luminance[i] + b.luminance[i] == Approx(1.0f).margin(1e-6));
+  }
+  // The loudest positive sample is white in the plain image, black in the inverted one.
+  CHECK(*std::max_element(a.luminance.begin(), a.luminance.end()) == Approx(1.0f));
+  CHECK(*std::min_element(b.luminance.begin(), b.luminance.end()) == Approx(0.0f));
+}
+
+TEST_CASE("interlacing puts the first half of the recording on even rows, the second on odd rows",
+          "[surface]") {
+  // Each chunk of 100 samples holds a constant equal to its index: rows show which chunk they hold.
+  const int chunks = 10;
+  std::vector<float> steps(static_cast<std::size_t>(chunks * 100));
+  for (std::size_t i = 0; i < steps.size(); ++i) steps[i] = static_cast<float>(i / 100) / 10.0f;
+  SoundImageOptions options;
+  options.samples_per_row = 100;
+  options.row_length_px = 100;
+  const auto plain = SoundToImage(steps, options);
+  options.interlace = true;
+  const auto laced = SoundToImage(steps, options);
+  const auto chunk_of = [](const GrayImage& image, int row) {
+    // luminance = 0.5 + 0.5 * value / peak, peak = 0.9
+    return static_cast<int>(std::lround((image.at(50, row) - 0.5) * 2.0 * 0.9 * 10.0));
+  };
+  for (int row = 0; row < chunks; ++row) {
+    CHECK(chunk_of(plain, row) == row);
+    const int expected = row % 2 == 0 ? row / 2 : chunks / 2 + row / 2;
+    CHECK(chunk_of(laced, row) == expected);
+  }
+}
+
+TEST_CASE("row height repeats each row, and recordings longer than 5 s are cut to 5 s",
+          "[surface]") {
+  SoundImageOptions options;
+  options.samples_per_row = 4800;
+  options.row_length_px = 960;
+  options.row_height_px = 3;
+  const auto image = SoundToImage(Sine(48000 * 8, 100.0), options);
+  CHECK(image.height == 50 * 3);  // 5 s of 0.1 s rows
+  for (int x = 0; x < image.width; ++x) {
+    REQUIRE(image.at(x, 0) == image.at(x, 1));
+    REQUIRE(image.at(x, 0) == image.at(x, 2));
+  }
+  CHECK_THROWS_AS(SoundToImage({}, options), std::invalid_argument);
+  options.row_length_px = 0;
+  CHECK_THROWS_AS(SoundToImage(Sine(100, 10.0), options), std::invalid_argument);
+}
+
+TEST_CASE("silence becomes a uniform mid-grey image, not amplified noise", "[surface]") {
+  const auto image = SoundToImage(std::vector<float>(9600, 0.0f), {});
+  for (const float l : image.luminance) REQUIRE(l == 0.5f);
+}
+
+TEST_CASE("sound -> profile maps 1000 ms to 1000 mm and follows the envelope", "[surface]") {
+  AudioClip clip;
+  clip.sample_rate_hz = 48000.0;
+  clip.samples.assign(48000, 0.0f);
+  // A burst of tone from 250 ms to 500 ms.
+  for (std::size_t i = 12000; i < 24000; ++i) {
+    clip.samples[i] =
+        static_cast<float>(0.5 * std::sin(2.0 * std::numbers::pi * static_cast<double>(i) / 48.0));
+  }
+  SoundProfileOptions options;
+  options.pitch_mm = 1.0;
+  options.amplitude_mm = 0.4;
+  const auto profile = SoundToProfile(clip, options);
+  CHECK(profile.width() == 1000);
+  CHECK(profile.height() == 1);
+  CHECK(profile.pitch_m() == Approx(1e-3));
+  CHECK(profile.at(100, 0) == 0.0f);  // silence is flat
+  CHECK(profile.at(375, 0) == Approx(0.4e-3).epsilon(0.02));
+  CHECK(profile.at(700, 0) == 0.0f);
+  // Edges within the 5 ms envelope window of 250 mm and 500 mm.
+  int rise = 0, fall = 0;
+  for (int x = 1; x < 1000; ++x) {
+    if (profile.at(x - 1, 0) < 0.2e-3f && profile.at(x, 0) >= 0.2e-3f) rise = x;
+    if (profile.at(x - 1, 0) >= 0.2e-3f && profile.at(x, 0) < 0.2e-3f) fall = x;
+  }
+  CHECK(std::abs(rise - 250) <= 3);
+  CHECK(std::abs(fall - 500) <= 3);
+}
+
+TEST_CASE("a CSV scan becomes a profile in true millimetres, resampled to the pitch", "[surface]") {
+  VibrationOptions options;
+  options.csv_pitch_mm = 0.5;
+  const auto two_column = VibrationProfileFromCsv(
+      "position_mm,height_mm\n# comment\n0,0\n1,0.2\n2,0\n", "scan.csv", options);
+  REQUIRE(two_column.width() == 5);
+  CHECK(two_column.at(1, 0) == Approx(0.1e-3));
+  CHECK(two_column.at(2, 0) == Approx(0.2e-3));
+  CHECK(two_column.at(4, 0) == Approx(0.0).margin(1e-12));
+  const auto one_column = VibrationProfileFromCsv("0.0\n0.3\n0.1\n", "heights.csv", options);
+  REQUIRE(one_column.width() == 3);
+  CHECK(one_column.at(1, 0) == Approx(0.3e-3));
+}
+
+TEST_CASE("bad CSV scans are refused with file and line", "[surface]") {
+  CHECK_THROWS_WITH(VibrationProfileFromCsv("0,1\n1,2\nx,y\n", "bad.csv"),
+                    Catch::Contains("bad.csv:3"));
+  CHECK_THROWS_WITH(VibrationProfileFromCsv("0,1\n2,2\n1,0\n", "order.csv"),
+                    Catch::Contains("order.csv:3") && Catch::Contains("increase"));
+  CHECK_THROWS_WITH(VibrationProfileFromCsv("0,1\n1\n", "mixed.csv"),
+                    Catch::Contains("mixed.csv:2"));
+  CHECK_THROWS_AS(VibrationProfileFromCsv("", "empty.csv"), LoadError);
+  CHECK_THROWS_AS(VibrationProfileFromCsv("1\n", "one.csv"), LoadError);
+  CHECK_THROWS_AS(VibrationProfileFromCsv("0\nnan\n", "nan.csv"), LoadError);
+  CHECK_THROWS_AS(VibrationProfileFromCsv("0\n1e300\n", "huge.csv"), LoadError);
+  sas::test::TempDir dir;
+  CHECK_THROWS_WITH(VibrationProfileFromFile(dir.file("absent.csv")),
+                    Catch::Contains("absent.csv"));
+}

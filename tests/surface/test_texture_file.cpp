@@ -1,0 +1,107 @@
+// Texture files: the four committed ones load; every kind of mistake is reported with
+// file:line:col and the key (issue 5).
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "surface/image_loader.h"
+#include "surface/texture_file.h"
+
+using sas::surface::LoadError;
+using sas::surface::ParseTextureFile;
+
+namespace {
+
+const std::string kValid = R"(name = "test"
+description = "A test texture."
+material = "wood"
+picture = "picture.png"
+height_map = "height.png"
+height_scale_mm = 1.0
+relief_mm = 0.2
+
+[gains]
+sound_gain_db = 0.0
+haptic_gain_db = -3.0
+
+[probe]
+width_mm = 0.5
+penetration_mm = 0.01
+style = "rub"
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("the four kiosk texture files load with their materials and files in place",
+          "[surface]") {
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"bubble_wrap", "bubble_wrap"},
+      {"broken_glass", "glass"},
+      {"wooden_board", "wood"},
+      {"cracked_ground", "dry_soil"}};
+  for (const auto& [folder, material] : expected) {
+    const auto t = sas::surface::LoadTextureFile(std::string(SAS_TEXTURES_DIR) + "/" + folder +
+                                                 "/texture.toml");
+    CHECK(t.material == material);
+    CHECK(std::filesystem::is_regular_file(t.picture_path));
+    CHECK(std::filesystem::is_regular_file(t.height_map_path));
+    CHECK(std::filesystem::is_regular_file(std::string(SAS_TEXTURES_DIR) + "/materials/" +
+                                           material + ".toml"));
+    CHECK(t.bubbles.has_value() == (material == "bubble_wrap"));
+    CHECK(t.description.back() == '.');
+  }
+}
+
+TEST_CASE("a valid texture file parses into its values", "[surface]") {
+  const auto t = ParseTextureFile(kValid, "/x/texture.toml");
+  CHECK(t.name == "test");
+  CHECK(t.picture_path == "/x/picture.png");
+  CHECK(t.gains.haptic_gain_db == -3.0);
+  CHECK(t.probe.style == sas::synth::ProbeStyle::kRub);
+  CHECK(t.probe.width_mm == 0.5);
+  CHECK_FALSE(t.bubbles.has_value());
+}
+
+TEST_CASE("texture file mistakes are reported with file, line and key", "[surface]") {
+  // Unknown key, at the top level and inside a table.
+  CHECK_THROWS_WITH(
+      ParseTextureFile("colour = \"red\"\n" + kValid, "t.toml"),
+      Catch::Contains("t.toml:1:1") && Catch::Contains("colour") && Catch::Contains("unknown key"));
+  CHECK_THROWS_WITH(ParseTextureFile(kValid + "colour = \"red\"\n", "t.toml"),  // lands in [probe]
+                    Catch::Contains("t.toml:17") && Catch::Contains("probe.colour"));
+  CHECK_THROWS_WITH(
+      ParseTextureFile(Replace(kValid, "style = \"rub\"", "style = \"rub\"\nangle = 3"), "t.toml"),
+      Catch::Contains("t.toml:17") && Catch::Contains("probe.angle"));
+  // Missing key.
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "haptic_gain_db = -3.0\n", ""), "t.toml"),
+                    Catch::Contains("gains.haptic_gain_db") && Catch::Contains("missing"));
+  // Out of range, wrong type, bad enumerations.
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "width_mm = 0.5", "width_mm = 500"), "t.toml"),
+                    Catch::Contains("t.toml:14") && Catch::Contains("probe.width_mm") &&
+                        Catch::Contains("outside"));
+  CHECK_THROWS_WITH(
+      ParseTextureFile(Replace(kValid, "relief_mm = 0.2", "relief_mm = \"high\""), "t.toml"),
+      Catch::Contains("t.toml:7") && Catch::Contains("must be a number"));
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"wood\"", "\"cheese\""), "t.toml"),
+                    Catch::Contains("t.toml:3") && Catch::Contains("cheese"));
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"rub\"", "\"poke\""), "t.toml"),
+                    Catch::Contains("probe.style"));
+  // The spoken description is exactly one sentence.
+  CHECK_THROWS_WITH(
+      ParseTextureFile(Replace(kValid, "A test texture.", "Two. Sentences."), "t.toml"),
+      Catch::Contains("t.toml:2") && Catch::Contains("one sentence"));
+  // Bubbles belong to bubble wrap only, and bubble wrap needs them.
+  CHECK_THROWS_WITH(ParseTextureFile(kValid + "[bubbles]\npop_force_n = 1.0\n", "t.toml"),
+                    Catch::Contains("bubbles"));
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"wood\"", "\"bubble_wrap\""), "t.toml"),
+                    Catch::Contains("bubbles") && Catch::Contains("missing"));
+  // Syntax errors carry the parser's position.
+  CHECK_THROWS_WITH(ParseTextureFile("name = \"x\nmaterial = 3\n", "s.toml"),
+                    Catch::Contains("s.toml:1"));
+  CHECK_THROWS_AS(sas::surface::LoadTextureFile("/nonexistent/texture.toml"), LoadError);
+}
