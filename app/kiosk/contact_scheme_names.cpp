@@ -1,0 +1,51 @@
+// Contact scheme names (see contact_scheme_names.h).
+#include "kiosk/contact_scheme_names.h"
+
+#include <algorithm>
+
+namespace sas::kiosk {
+namespace {
+
+struct SchemeName {
+  const char* name;
+  synth::ContactScheme scheme;
+};
+
+constexpr SchemeName kSchemes[] = {
+    {"explicit_passive", synth::ContactScheme::kExplicitPassive},
+    {"trapezoid_newton", synth::ContactScheme::kTrapezoidNewton},
+    {"discrete_gradient", synth::ContactScheme::kDiscreteGradient},
+    {"energy_quadratised", synth::ContactScheme::kEnergyQuadratised},
+};
+
+}  // namespace
+
+const char* ContactSchemeName(synth::ContactScheme scheme) {
+  for (const auto& entry : kSchemes) {
+    if (entry.scheme == scheme) return entry.name;
+  }
+  return "unknown";
+}
+
+bool ParseContactScheme(std::string_view name, synth::ContactScheme* scheme) {
+  std::string normalised(name);
+  std::replace(normalised.begin(), normalised.end(), '-', '_');
+  for (const auto& entry : kSchemes) {
+    if (normalised == entry.name) {
+      *scheme = entry.scheme;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string ContactSchemeChoices() {
+  std::string choices;
+  for (const auto& entry : kSchemes) {
+    if (!choices.empty()) choices += ", ";
+    choices += entry.name;
+  }
+  return choices;
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,69 @@
+// The `impact` calibration command: its JSON carries the engine's measurement next to the closed
+// form, and bad arguments are refused with a message naming the option.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <string>
+
+#include "kiosk/impact_command.h"
+
+namespace {
+
+// The number after "<section>": {... "<key>": in the report.
+double Field(const std::string& json, const std::string& section, const std::string& key) {
+  const auto section_at = json.find("\"" + section + "\"");
+  REQUIRE(section_at != std::string::npos);
+  const auto key_at = json.find("\"" + key + "\": ", section_at);
+  REQUIRE(key_at != std::string::npos);
+  return std::stod(json.substr(key_at + key.size() + 4));
+}
+
+std::string Capture(const std::vector<std::string>& args, int* exit_code) {
+  std::FILE* out = std::tmpfile();
+  std::FILE* err = std::tmpfile();
+  *exit_code = sas::kiosk::RunImpactCommand(args, out, err);
+  std::string text;
+  for (std::FILE* stream : {out, err}) {
+    std::rewind(stream);
+    char buffer[512];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, stream)) > 0) text.append(buffer, n);
+    std::fclose(stream);
+  }
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("impact command reports the engine's exit velocity within 1e-4 of the closed form",
+          "[kiosk]") {
+  int exit_code = -1;
+  const std::string json = Capture({"--mass", "0.01", "--k", "1e6", "--mu", "0.5", "--alpha", "1.5",
+                                    "--v-in", "1", "--phase", "0.37"},
+                                   &exit_code);
+  INFO(json);
+  REQUIRE(exit_code == 0);
+  // Closed-form values from reference/hunt-crossley.md's example table (m = 10 g, α = 1.5).
+  CHECK(Field(json, "closed_form", "restitution") == Approx(0.748434931597).epsilon(1e-9));
+  CHECK(Field(json, "closed_form", "contact_time_s") == Approx(2.106292e-3).epsilon(3e-6));
+  CHECK(Field(json, "measured", "exit_velocity_mps") == Approx(0.748434931597).epsilon(1e-4));
+  CHECK(Field(json, "relative_error", "exit_velocity") < 1e-4);
+  CHECK(Field(json, "measured", "samples_per_contact") ==
+        Approx(2.106292e-3 * 48000).epsilon(1e-2));
+  CHECK(json.find("\"energy_gained\": false") != std::string::npos);
+}
+
+TEST_CASE("impact command refuses bad arguments naming the option", "[kiosk]") {
+  int exit_code = -1;
+  auto text = Capture({"--k", "soft"}, &exit_code);
+  CHECK(exit_code == 2);
+  CHECK_THAT(text, Catch::Contains("--k") && Catch::Contains("not a number"));
+  text = Capture({"--alpha", "7"}, &exit_code);
+  CHECK(exit_code == 2);
+  CHECK_THAT(text, Catch::Contains("out of range"));
+  text = Capture({"--scheme", "runge-kutta"}, &exit_code);
+  CHECK(exit_code == 2);
+  CHECK_THAT(text, Catch::Contains("discrete_gradient"));
+  text = Capture({"--mass"}, &exit_code);
+  CHECK(exit_code == 2);
+  CHECK_THAT(text, Catch::Contains("missing value"));
+}
