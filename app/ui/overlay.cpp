@@ -1,0 +1,83 @@
+// Overlay shapes (see overlay.h). Sizes scale with the screen's shorter side so a 1080p panel and
+// a 768p test display look alike.
+#include "ui/overlay.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sas::ui {
+namespace {
+
+int Scaled(int width, int height, float fraction) {
+  return std::max(
+      1, static_cast<int>(std::lround(static_cast<float>(std::min(width, height)) * fraction)));
+}
+
+}  // namespace
+
+void AddFrame(Overlays& out, PixelRect r, int t, Rgba color) {
+  t = std::clamp(t, 1, std::max(1, std::min(r.w, r.h) / 2));
+  out.push_back({{r.x, r.y, r.w, t}, color});
+  out.push_back({{r.x, r.y + r.h - t, r.w, t}, color});
+  out.push_back({{r.x, r.y + t, t, r.h - 2 * t}, color});
+  out.push_back({{r.x + r.w - t, r.y + t, t, r.h - 2 * t}, color});
+}
+
+void AddCountdownBar(Overlays& out, int width, int height, float fraction_left) {
+  const int bar_h = Scaled(width, height, 0.03f);
+  const int margin = Scaled(width, height, 0.02f);
+  const PixelRect track{margin, margin, width - 2 * margin, bar_h};
+  out.push_back({track, {0, 0, 0, 140}});
+  const float f = std::clamp(fraction_left, 0.0f, 1.0f);
+  const int filled = static_cast<int>(std::lround(static_cast<float>(track.w) * f));
+  if (filled > 0) out.push_back({{track.x, track.y, filled, track.h}, {255, 255, 255, 220}});
+}
+
+void AddLevelMeter(Overlays& out, int width, int height, float level) {
+  constexpr int kSegments = 20;
+  const int seg_w = Scaled(width, height, 0.03f);
+  const int margin = Scaled(width, height, 0.02f);
+  const int total_h = height - 2 * margin;
+  const int seg_h = std::max(1, total_h / kSegments);
+  const int x = width - margin - seg_w;
+  const int lit = static_cast<int>(std::lround(std::clamp(level, 0.0f, 1.0f) * kSegments));
+  out.push_back({{x - 2, height - margin - seg_h * kSegments - 2, seg_w + 4, seg_h * kSegments + 4},
+                 {0, 0, 0, 140}});
+  for (int i = 0; i < lit; ++i) {
+    const float pos = static_cast<float>(i + 1) / kSegments;
+    const Rgba c = pos > 0.9f   ? Rgba{230, 40, 30, 230}
+                   : pos > 0.7f ? Rgba{240, 200, 40, 230}
+                                : Rgba{60, 200, 80, 230};
+    // One-pixel gap between segments so the meter reads as a meter.
+    out.push_back({{x, height - margin - (i + 1) * seg_h + 1, seg_w, seg_h - 1}, c});
+  }
+}
+
+void AddRecordingDot(Overlays& out, int width, int height) {
+  const int d = Scaled(width, height, 0.04f);
+  const int margin = Scaled(width, height, 0.02f);
+  // A square dot with its corners cut, cheap and recognisable at this size.
+  const int cut = d / 4;
+  const int y = margin + Scaled(width, height, 0.05f);
+  out.push_back({{margin + cut, y, d - 2 * cut, d}, {220, 30, 30, 255}});
+  out.push_back({{margin, y + cut, cut, d - 2 * cut}, {220, 30, 30, 255}});
+  out.push_back({{margin + d - cut, y + cut, cut, d - 2 * cut}, {220, 30, 30, 255}});
+}
+
+PixelRect StaffPanelRect(int width, int height) {
+  const int w = width * 3 / 5;
+  const int h = height * 3 / 5;
+  return {(width - w) / 2, (height - h) / 2, w, h};
+}
+
+void AddStaffPanelFrame(Overlays& out, int width, int height) {
+  const PixelRect panel = StaffPanelRect(width, height);
+  out.push_back({panel, {16, 20, 28, 210}});
+  AddFrame(out, panel, Scaled(width, height, 0.006f), {230, 230, 230, 255});
+}
+
+void DrawOverlays(const Overlays& overlays, ImageRgba& target) {
+  for (const auto& s : overlays) FillRectBlend(target, s.rect, s.color);
+}
+
+}  // namespace sas::ui

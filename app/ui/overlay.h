@@ -1,0 +1,43 @@
+#pragma once
+// Flat overlay shapes drawn over the texture: the recording countdown bar, the live level meter,
+// the recording dot and the staff panel's frame (issue 7). A shape is a rectangle filled with a
+// colour whose alpha is its coverage; the window draws them with SDL's blended fill and the
+// software compositor with FillRectBlend, so both give the same pixels. Text comes later.
+
+#include <vector>
+
+#include "ui/image_rgba.h"
+
+namespace sas::ui {
+
+struct OverlayShape {
+  PixelRect rect;
+  Rgba color;
+  bool operator==(const OverlayShape&) const = default;
+};
+
+using Overlays = std::vector<OverlayShape>;
+
+// A rectangle outline `thickness_px` wide inside `rect`.
+void AddFrame(Overlays& out, PixelRect rect, int thickness_px, Rgba color);
+
+// Countdown: a bar across the top of a width x height screen, filled in proportion to
+// `fraction_left` (1 at the start of the countdown, 0 when recording starts).
+void AddCountdownBar(Overlays& out, int width, int height, float fraction_left);
+
+// Live microphone level: a segmented vertical meter at the right edge; `level` 0..1 of full
+// scale (linear in dB in the caller's choice of range); segments above 0.9 are red (clipping).
+void AddLevelMeter(Overlays& out, int width, int height, float level);
+
+// A red dot at the top-left while recording.
+void AddRecordingDot(Overlays& out, int width, int height);
+
+// The staff panel's backdrop: a translucent dark panel with a light frame over the middle of the
+// screen (contents come with the staff panel's wiring).
+void AddStaffPanelFrame(Overlays& out, int width, int height);
+// Where AddStaffPanelFrame puts the panel (for its contents).
+PixelRect StaffPanelRect(int width, int height);
+
+void DrawOverlays(const Overlays& overlays, ImageRgba& target);
+
+}  // namespace sas::ui

@@ -1,0 +1,192 @@
+// A small program around the ui layer for end-to-end tests under Xvfb and for looking at the tip
+// deformation (it is not the kiosk: app/main.cpp wires the real thing). Commands:
+//   snapshot <picture|checker> <out.png> [x0 y0 x1 y1 [pressure]]
+//       headless: a simulated drag from (x0,y0) to (x1,y1) over 0.25 s, frame composed in software
+//       while the tip is still down and moving, written as PNG (no display needed)
+//   window <picture|checker> [seconds]
+//       full-screen KioskWindow running the real event/redraw loop; prints one line per event
+//       ("ready W H driver renderer", "down x y", "up x y", "staff open|closed", "token n",
+//       "record pressed|released", "frames n") and stops after `seconds` (default: never)
+//   check <screenshot.png> <picture|checker> <x> <y>
+//       compares a screenshot with the picture fitted to it: exit 0 when the pixels within the
+//       dent radius of (x, y) differ clearly from the picture and pixels far from it do not
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "ui/kiosk_window.h"
+#include "ui/picture_io.h"
+#include "ui/texture_view.h"
+
+namespace {
+
+using sas::ui::ImageRgba;
+
+// A checkerboard with a gradient: every displacement shows on it.
+ImageRgba Checker(int w, int h) {
+  ImageRgba img(w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const bool dark = ((x / 24) + (y / 24)) % 2 == 0;
+      const auto g = static_cast<std::uint8_t>(dark ? 70 + (x * 60) / w : 190 + (y * 50) / h);
+      img.set(
+          x, y,
+          {g, static_cast<std::uint8_t>(g * 9 / 10), static_cast<std::uint8_t>(g * 8 / 10), 255});
+    }
+  }
+  return img;
+}
+
+ImageRgba Picture(const std::string& name, int w, int h) {
+  if (name == "checker") return Checker(w, h);
+  return sas::ui::ResizeToCover(sas::ui::LoadPicture(name), w, h);
+}
+
+double Now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+int Snapshot(int argc, char** argv) {
+  if (argc < 4) return 2;
+  const int w = 800, h = 600;
+  float x0 = 300, y0 = 300, x1 = 460, y1 = 300, pressure = 1.0f;
+  if (argc >= 8) {
+    x0 = std::stof(argv[4]);
+    y0 = std::stof(argv[5]);
+    x1 = std::stof(argv[6]);
+    y1 = std::stof(argv[7]);
+  }
+  if (argc >= 9) pressure = std::stof(argv[8]);
+  sas::ui::TextureView view(w, h);
+  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(argv[2], w, h)), 0.0, false);
+  // 60 Hz drag, then the frame at the end of the stroke with the tip still down.
+  constexpr int kSteps = 15;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = i / 60.0;
+    const float f = static_cast<float>(i) / kSteps;
+    sas::ui::StylusSample s;
+    s.time_ns = static_cast<std::int64_t>(t * 1e9);
+    s.x_px = x0 + (x1 - x0) * f;
+    s.y_px = y0 + (y1 - y0) * f;
+    s.pressure = pressure;
+    s.tip_down = true;
+    view.OnStylus(s);
+    view.Advance(t);
+  }
+  ImageRgba out;
+  sas::ui::ComposeFrame(view.TakeFrame(), out);
+  sas::ui::SavePng(out, argv[3]);
+  std::printf("snapshot %s depth %.2f px drag %.2f,%.2f px\n", argv[3],
+              view.deformation().depth_px(), view.deformation().drag_x_px(),
+              view.deformation().drag_y_px());
+  return 0;
+}
+
+int Window(int argc, char** argv) {
+  if (argc < 3) return 2;
+  const double run_s = argc >= 4 ? std::stod(argv[3]) : -1.0;
+  sas::ui::KioskWindowOptions options;
+  options.staff_chord.hold_s = 0.3;
+  sas::ui::KioskWindow window(options);
+  window.Open();
+  const int w = window.width_px(), h = window.height_px();
+  sas::ui::TextureView view(w, h);
+  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(argv[2], w, h)), Now(), false);
+  std::printf("ready %d %d %s %s\n", w, h, window.driver().c_str(), window.renderer_name().c_str());
+  std::fflush(stdout);
+  const double start = Now();
+  std::uint64_t frames = 0;
+  double last_report = start;
+  while (run_s < 0 || Now() - start < run_s) {
+    for (const auto& e : window.PollEvents(view.NeedsRedraw() ? 0 : 50)) {
+      using K = sas::ui::UiEvent::Kind;
+      switch (e.kind) {
+        case K::kPointerDown:
+          std::printf("down %.0f %.0f\n", e.stylus.x_px, e.stylus.y_px);
+          break;
+        case K::kPointerUp:
+          std::printf("up %.0f %.0f\n", e.stylus.x_px, e.stylus.y_px);
+          break;
+        case K::kStaffChord:
+          std::printf("staff %s\n", e.pressed ? "open" : "closed");
+          break;
+        case K::kTokenKey:
+          std::printf("token %d\n", e.token);
+          break;
+        case K::kRecordKey:
+          std::printf("record %s\n", e.pressed ? "pressed" : "released");
+          break;
+        case K::kRedraw:
+          view.Invalidate();
+          break;
+        case K::kPointerMove:
+          break;
+      }
+      if (e.kind == K::kPointerDown || e.kind == K::kPointerMove || e.kind == K::kPointerUp) {
+        view.OnStylus(e.stylus);
+      }
+      std::fflush(stdout);
+    }
+    sas::ui::Overlays overlays;
+    if (window.staff_panel_open()) sas::ui::AddStaffPanelFrame(overlays, w, h);
+    view.SetOverlays(std::move(overlays));
+    if (view.Advance(Now())) {
+      window.Present(view.TakeFrame());
+      ++frames;
+    }
+    if (Now() - last_report > 1.0) {
+      std::printf("frames %llu\n", static_cast<unsigned long long>(frames));
+      std::fflush(stdout);
+      last_report = Now();
+    }
+  }
+  return 0;
+}
+
+int Check(int argc, char** argv) {
+  if (argc < 6) return 2;
+  const ImageRgba shot = sas::ui::LoadPicture(argv[2]);
+  const ImageRgba pic = Picture(argv[3], shot.width(), shot.height());
+  const int cx = std::atoi(argv[4]), cy = std::atoi(argv[5]);
+  const float radius = sas::ui::DeformationConfig{}.radius_px;
+  double near_sum = 0, far_sum = 0;
+  double near_n = 0, far_n = 0;
+  for (int y = 0; y < shot.height(); ++y) {
+    for (int x = 0; x < shot.width(); ++x) {
+      const auto a = shot.at(x, y), b = pic.at(x, y);
+      const double d = (std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b)) / 3.0;
+      const double r = std::hypot(x - cx, y - cy);
+      if (r < 0.8 * radius) {
+        near_sum += d;
+        ++near_n;
+      } else if (r > 3.0 * radius) {
+        far_sum += d;
+        ++far_n;
+      }
+    }
+  }
+  const double near_mean = near_n > 0 ? near_sum / near_n : 0.0;
+  const double far_mean = far_n > 0 ? far_sum / far_n : 0.0;
+  std::printf("near-dent mean difference %.2f, far mean difference %.3f\n", near_mean, far_mean);
+  return near_mean > 8.0 && far_mean < 1.0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const std::string command = argc > 1 ? argv[1] : "";
+    if (command == "snapshot") return Snapshot(argc, argv);
+    if (command == "window") return Window(argc, argv);
+    if (command == "check") return Check(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ui_e2e_app: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "usage: ui_e2e_app snapshot|window|check ...\n");
+  return 2;
+}
