@@ -1,0 +1,179 @@
+// GPIO token switches (see gpio_switches.h).
+#include "platform/gpio/gpio_switches.h"
+
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <gpiod.hpp>
+
+#include "platform/common/clock.h"
+
+namespace sas::platform {
+namespace {
+
+bool IsOffset(const std::string& spec) {
+  return !spec.empty() && std::all_of(spec.begin(), spec.end(),
+                                      [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+class LibgpiodEventSource final : public GpioEventSource {
+ public:
+  explicit LibgpiodEventSource(const GpioSwitchConfig& config)
+      : chip_(config.chip, gpiod::chip::OPEN_LOOKUP) {
+    if (!chip_) throw std::runtime_error("GPIO chip '" + config.chip + "' not found");
+    std::vector<unsigned> offsets;
+    for (int i = 0; i < kSwitchInputCount; ++i) {
+      const std::string& spec = config.lines[static_cast<std::size_t>(i)];
+      if (spec.empty()) continue;
+      unsigned offset = 0;
+      if (IsOffset(spec)) {
+        offset = static_cast<unsigned>(std::stoul(spec));
+      } else {
+        // Resolved on this chip object, so all lines belong to one chip (one request).
+        gpiod::line line = chip_.find_line(spec);
+        if (!line) throw std::runtime_error("GPIO line '" + spec + "' not on " + chip_.name());
+        offset = line.offset();
+      }
+      offsets.push_back(offset);
+      inputs_.push_back(i);
+    }
+    bulk_ = chip_.get_lines(offsets);
+    bulk_.request({"sketch-a-scratch", gpiod::line_request::EVENT_BOTH_EDGES,
+                   gpiod::line_request::FLAG_BIAS_PULL_UP});
+    describe_ = chip_.name() + " '" + chip_.label() + "' lines";
+    for (unsigned offset : offsets) describe_ += " " + std::to_string(offset);
+  }
+
+  std::vector<pollfd> Fds() const override {
+    std::vector<pollfd> fds;
+    for (unsigned i = 0; i < bulk_.size(); ++i) fds.push_back({bulk_[i].event_get_fd(), POLLIN, 0});
+    return fds;
+  }
+
+  bool Read(const std::vector<pollfd>& ready, std::vector<RawEdge>& out) override {
+    for (std::size_t i = 0; i < ready.size() && i < bulk_.size(); ++i) {
+      if ((ready[i].revents & (POLLERR | POLLHUP | POLLNVAL)) != 0) return false;
+      if ((ready[i].revents & POLLIN) == 0) continue;
+      try {
+        for (const auto& event : bulk_[static_cast<unsigned>(i)].event_read_multiple()) {
+          out.push_back({static_cast<std::int64_t>(event.timestamp.count()), inputs_[i],
+                         event.event_type == gpiod::line_event::RISING_EDGE});
+        }
+      } catch (const std::exception&) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::array<bool, kSwitchInputCount> InitialLevels() override {
+    std::array<bool, kSwitchInputCount> high;
+    high.fill(true);
+    const auto values = bulk_.get_values();
+    for (std::size_t i = 0; i < values.size() && i < inputs_.size(); ++i)
+      high[static_cast<std::size_t>(inputs_[i])] = values[i] != 0;
+    return high;
+  }
+
+  std::string Describe() const override { return describe_; }
+
+ private:
+  gpiod::chip chip_;
+  mutable gpiod::line_bulk bulk_;  // libgpiod 1.6 has no const operator[]
+  std::vector<int> inputs_;  // bulk index -> input 0..4
+  std::string describe_;
+};
+
+}  // namespace
+
+std::unique_ptr<GpioEventSource> MakeLibgpiodEventSource(const GpioSwitchConfig& config) {
+  return std::make_unique<LibgpiodEventSource>(config);
+}
+
+void GpioEdgeProcessor::SetInitialLevels(const std::array<bool, kSwitchInputCount>& high) {
+  for (int i = 0; i < kSwitchInputCount; ++i)
+    debouncer_.SetInitial(i, high[static_cast<std::size_t>(i)] != active_low_);
+}
+
+GpioSwitchInput::GpioSwitchInput(GpioSwitchConfig config, std::unique_ptr<GpioEventSource> source)
+    : config_(std::move(config)),
+      source_(std::move(source)),
+      processor_(config_.active_low, static_cast<std::int64_t>(config_.debounce_ms * 1e6)) {}
+
+GpioSwitchInput::~GpioSwitchInput() {
+  Stop();
+}
+
+bool GpioSwitchInput::Start(std::string* error) {
+  Stop();
+  if (!source_) {
+    try {
+      source_ = MakeLibgpiodEventSource(config_);
+    } catch (const std::exception& e) {
+      if (error) *error = e.what();
+      return false;
+    }
+  }
+  const auto levels = source_->InitialLevels();
+  processor_.SetInitialLevels(levels);
+  for (int i = 0; i < kSwitchInputCount; ++i)
+    initial_[static_cast<std::size_t>(i)] = processor_.Pressed(i);
+  // Tokens already on their switches at start count as placed now.
+  const std::int64_t now_ns = MonotonicNowNs();
+  for (int i = 0; i < kTokenCount; ++i) {
+    if (initial_[static_cast<std::size_t>(i)])
+      queue_.TryPush(SwitchEvent{now_ns, static_cast<std::int8_t>(i), true});
+  }
+  stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  if (stop_fd_ < 0) {
+    if (error) *error = "eventfd failed";
+    return false;
+  }
+  thread_ = std::thread([this] { Run(); });
+  return true;
+}
+
+void GpioSwitchInput::Stop() {
+  if (thread_.joinable()) {
+    const std::uint64_t one = 1;
+    [[maybe_unused]] const ssize_t n = write(stop_fd_, &one, sizeof one);
+    thread_.join();
+  }
+  if (stop_fd_ >= 0) close(stop_fd_);
+  stop_fd_ = -1;
+}
+
+void GpioSwitchInput::Run() {
+  std::vector<pollfd> fds = source_->Fds();
+  fds.push_back({stop_fd_, POLLIN, 0});
+  std::vector<pollfd> ready;
+  std::vector<RawEdge> edges;
+  auto sink = [this](const SwitchEvent& e) { queue_.TryPush(e); };
+  for (;;) {
+    const std::int64_t deadline_ns = processor_.NextDeadlineNs();
+    int timeout_ms = -1;
+    if (deadline_ns >= 0) {
+      const std::int64_t wait_ns = std::max<std::int64_t>(0, deadline_ns - MonotonicNowNs());
+      timeout_ms = static_cast<int>((wait_ns + kNsPerMs - 1) / kNsPerMs);
+    }
+    for (auto& fd : fds) fd.revents = 0;
+    const int n = poll(fds.data(), static_cast<nfds_t>(fds.size()), timeout_ms);
+    if (n < 0 && errno != EINTR) return;
+    if (fds.back().revents != 0) return;  // Stop()
+    if (n > 0) {
+      ready.assign(fds.begin(), fds.end() - 1);
+      edges.clear();
+      if (!source_->Read(ready, edges)) return;
+      // Lines are read fd by fd: restore global time order before the state machines see them.
+      std::stable_sort(edges.begin(), edges.end(),
+                       [](const RawEdge& a, const RawEdge& b) { return a.time_ns < b.time_ns; });
+      for (const RawEdge& edge : edges) processor_.OnEdge(edge, sink);
+      edges_.fetch_add(edges.size(), std::memory_order_relaxed);
+    }
+    processor_.Advance(MonotonicNowNs(), sink);
+  }
+}
+
+}  // namespace sas::platform

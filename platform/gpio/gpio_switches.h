@@ -1,0 +1,106 @@
+#pragma once
+// Token switches and record button on GPIO lines (libgpiod 1.6, v1 character-device API).
+//
+// Split in two so tests drive the real event processing with a fake fd source:
+//  - GpioEventSource: the fds to poll and a Read() that turns ready fds into raw edges
+//    (timestamp, input, rising). LibgpiodEventSource is the real one: one chip object looked up
+//    once, lines resolved by offset or name on that same object (requesting lines from separate
+//    find_line() calls fails with EINVAL), one request with pull-up bias and both edges.
+//  - GpioSwitchInput: the event thread. It blocks in poll() on the source's fds plus a stop
+//    eventfd, with the debouncer's next deadline as timeout; edges are processed in timestamp
+//    order through GpioEdgeProcessor (edge -> level -> active-low -> Debouncer) into the queue.
+// Switches close to ground against the pull-up, so a token present reads low (active_low).
+
+#include <poll.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "platform/device_status.h"
+#include "platform/input/debouncer.h"
+#include "platform/input/switch_input.h"
+
+namespace sas::platform {
+
+struct RawEdge {
+  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC (the kernel's event timestamp)
+  int input = 0;             // 0..3 token, 4 record
+  bool rising = false;
+};
+
+struct GpioSwitchConfig {
+  std::string chip = "gpiochip0";  // name, path or label (libgpiod lookup)
+  // Five entries: tokens 1-4 then the record button; each an offset ("17") or a line name
+  // ("GPIO17"). An empty record entry means no record button on GPIO.
+  std::array<std::string, kSwitchInputCount> lines = {"17", "27", "22", "23", "24"};
+  bool active_low = true;  // switch to ground, pull-up: pressed = low
+  double debounce_ms = 30.0;
+};
+
+class GpioEventSource {
+ public:
+  virtual ~GpioEventSource() = default;
+  // One pollfd per fd to wait on (events = POLLIN).
+  virtual std::vector<pollfd> Fds() const = 0;
+  // Appends the edges behind the ready fds (revents set by poll). Returns false on a fatal error.
+  virtual bool Read(const std::vector<pollfd>& ready, std::vector<RawEdge>& out) = 0;
+  // Raw line levels (true = high) at start, per input; missing inputs read as high.
+  virtual std::array<bool, kSwitchInputCount> InitialLevels() = 0;
+  virtual std::string Describe() const = 0;
+};
+
+// Set-up: throws std::system_error / std::runtime_error when the chip or a line is missing.
+std::unique_ptr<GpioEventSource> MakeLibgpiodEventSource(const GpioSwitchConfig& config);
+
+// The event-processing unit: raw edges in timestamp order -> debounced SwitchEvents.
+class GpioEdgeProcessor {
+ public:
+  GpioEdgeProcessor(bool active_low, std::int64_t debounce_ns)
+      : active_low_(active_low), debouncer_(debounce_ns) {}
+  void SetInitialLevels(const std::array<bool, kSwitchInputCount>& high);
+  template <typename Sink>
+  void OnEdge(const RawEdge& edge, Sink&& sink) {
+    debouncer_.Feed(edge.input, edge.rising != active_low_, edge.time_ns, sink);
+  }
+  template <typename Sink>
+  void Advance(std::int64_t now_ns, Sink&& sink) {
+    debouncer_.Advance(now_ns, sink);
+  }
+  std::int64_t NextDeadlineNs() const { return debouncer_.NextDeadlineNs(); }
+  bool Pressed(int input) const { return debouncer_.Stable(input); }
+
+ private:
+  bool active_low_;
+  Debouncer debouncer_;
+};
+
+class GpioSwitchInput final : public SwitchInput {
+ public:
+  // `source` may be null: Start() then builds the libgpiod source from `config` (and reports a
+  // missing chip as an error rather than an exception).
+  GpioSwitchInput(GpioSwitchConfig config, std::unique_ptr<GpioEventSource> source = nullptr);
+  ~GpioSwitchInput() override;
+  const char* Name() const override { return "gpio"; }
+  bool Start(std::string* error) override;
+  void Stop() override;
+  std::uint64_t EdgesSeen() const { return edges_.load(std::memory_order_relaxed); }
+  // Debounced state at start (after Start): which switches are closed.
+  bool InitiallyPressed(int input) const { return initial_[static_cast<std::size_t>(input)]; }
+
+ private:
+  void Run();
+
+  GpioSwitchConfig config_;
+  std::unique_ptr<GpioEventSource> source_;
+  GpioEdgeProcessor processor_;
+  std::array<bool, kSwitchInputCount> initial_{};
+  int stop_fd_ = -1;
+  std::thread thread_;
+  std::atomic<std::uint64_t> edges_{0};
+};
+
+}  // namespace sas::platform

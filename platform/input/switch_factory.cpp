@@ -1,0 +1,46 @@
+// Token-switch backend selection with keyboard fallback (see switch_factory.h).
+#include "platform/input/switch_factory.h"
+
+namespace sas::platform {
+
+SwitchInputs OpenSwitchInputs(const SwitchesConfig& config, DeviceStatusBoard& board,
+                              std::unique_ptr<GpioEventSource> gpio_source, HidOpener hid_opener) {
+  SwitchInputs inputs;
+  const bool want_gpio = config.backend == "gpio" || config.backend == "auto";
+  const bool want_hid = config.backend == "mcp2221" || config.backend == "auto";
+  std::string why;
+  if (want_gpio) {
+    auto gpio = std::make_unique<GpioSwitchInput>(config.gpio, std::move(gpio_source));
+    std::string error;
+    if (gpio->Start(&error)) {
+      board.Set("switches", DeviceState::kOk,
+                "GPIO " + config.gpio.chip + ", debounce " +
+                    std::to_string(static_cast<int>(config.gpio.debounce_ms)) + " ms",
+                "gpio");
+      inputs.hardware = std::move(gpio);
+      return inputs;
+    }
+    why = "GPIO chip '" + config.gpio.chip + "' unusable (" + error + ")";
+  }
+  if (want_hid) {
+    auto hid = std::make_unique<Mcp2221SwitchInput>(
+        config.mcp2221, hid_opener ? std::move(hid_opener) : MakeHidapiOpener(config.mcp2221.path),
+        board);
+    std::string error;
+    if (hid->Start(&error)) {  // sets status "ok" itself
+      inputs.hardware = std::move(hid);
+      return inputs;
+    }
+    why += (why.empty() ? "" : " and ") + error;
+  }
+  if (config.backend == "keyboard") {
+    board.Set("switches", DeviceState::kOk, "keys 1-4 toggle tokens, R records", "keyboard");
+  } else {
+    board.AddFailure("switches");
+    board.Set("switches", DeviceState::kMissing,
+              why + "; token switches fall back to keys 1-4 (R records)", "keyboard");
+  }
+  return inputs;
+}
+
+}  // namespace sas::platform

@@ -1,0 +1,199 @@
+// libinput tablet-tool source (see pen_source.h). libinput's udev backend needs udev to have
+// initialised the devices (fine on the appliance); the kiosk user needs group `input`.
+#include <fcntl.h>
+#include <libinput.h>
+#include <libudev.h>
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <thread>
+
+#include "platform/common/clock.h"
+#include "platform/pen/pen_source.h"
+
+namespace sas::platform {
+namespace {
+
+int OpenRestricted(const char* path, int flags, void* /*user_data*/) {
+  const int fd = open(path, flags | O_CLOEXEC);
+  return fd < 0 ? -errno : fd;
+}
+void CloseRestricted(int fd, void* /*user_data*/) {
+  close(fd);
+}
+constexpr libinput_interface kInterface = {OpenRestricted, CloseRestricted};
+
+struct UdevDeleter {
+  void operator()(udev* u) const { udev_unref(u); }
+};
+struct LibinputDeleter {
+  void operator()(libinput* li) const { libinput_unref(li); }
+};
+
+class LibinputPenSource final : public PenSource {
+ public:
+  LibinputPenSource(PenConfig config, DeviceStatusBoard& board)
+      : config_(std::move(config)), board_(&board) {}
+  ~LibinputPenSource() override { Stop(); }
+  const char* Name() const override { return "libinput"; }
+
+  bool Start(std::string* error) override {
+    Stop();
+    udev_.reset(udev_new());
+    if (!udev_) return Fail(error, "udev unavailable");
+    input_.reset(libinput_udev_create_context(&kInterface, nullptr, udev_.get()));
+    if (!input_) return Fail(error, "libinput context failed");
+    if (libinput_udev_assign_seat(input_.get(), config_.seat.c_str()) != 0)
+      return Fail(error,
+                  "cannot assign " + config_.seat + " (no udev, or no access to /dev/input)");
+    libinput_dispatch(input_.get());
+    int devices = 0;
+    while (libinput_event* event = libinput_get_event(input_.get())) {
+      if (libinput_event_get_type(event) == LIBINPUT_EVENT_DEVICE_ADDED) {
+        ++devices;
+        libinput_device* device = libinput_event_get_device(event);
+        if (tablet_name_.empty() && IsOurTablet(device))
+          tablet_name_ = libinput_device_get_name(device);
+      }
+      libinput_event_destroy(event);
+    }
+    if (tablet_name_.empty()) {
+      return Fail(error, "no pen tablet among " + std::to_string(devices) + " input devices");
+    }
+    stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+    thread_ = std::thread([this] { Run(); });
+    return true;
+  }
+
+  void Stop() override {
+    if (thread_.joinable()) {
+      const std::uint64_t one = 1;
+      [[maybe_unused]] const ssize_t n = write(stop_fd_, &one, sizeof one);
+      thread_.join();
+    }
+    if (stop_fd_ >= 0) close(stop_fd_);
+    stop_fd_ = -1;
+    input_.reset();
+    udev_.reset();
+  }
+
+  const std::string& tablet_name() const { return tablet_name_; }
+
+ private:
+  bool Fail(std::string* error, const std::string& why) {
+    if (error) *error = why;
+    input_.reset();
+    udev_.reset();
+    return false;
+  }
+
+  bool IsOurTablet(libinput_device* device) const {
+    if (!libinput_device_has_capability(device, LIBINPUT_DEVICE_CAP_TABLET_TOOL)) return false;
+    return config_.device_name_contains.empty() ||
+           std::string(libinput_device_get_name(device)).find(config_.device_name_contains) !=
+               std::string::npos;
+  }
+
+  void Run() {
+    pollfd fds[2] = {{libinput_get_fd(input_.get()), POLLIN, 0}, {stop_fd_, POLLIN, 0}};
+    for (;;) {
+      heartbeat_ns_.store(MonotonicNowNs(), std::memory_order_relaxed);
+      // A bounded wait keeps the heartbeat fresh for the watchdog while the pen is idle.
+      const int n = poll(fds, 2, 250);
+      if (n < 0 && errno != EINTR) return;
+      if (fds[1].revents != 0) return;
+      libinput_dispatch(input_.get());
+      while (libinput_event* event = libinput_get_event(input_.get())) {
+        Handle(event);
+        libinput_event_destroy(event);
+      }
+    }
+  }
+
+  void Handle(libinput_event* event) {
+    const auto type = libinput_event_get_type(event);
+    if (type == LIBINPUT_EVENT_DEVICE_REMOVED) {
+      libinput_device* device = libinput_event_get_device(event);
+      if (IsOurTablet(device)) {
+        board_->AddFailure("pen");
+        board_->Set("pen", DeviceState::kLost,
+                    "pen tablet '" + tablet_name_ + "' unplugged; mouse/touch fallback",
+                    "libinput");
+      }
+      return;
+    }
+    if (type == LIBINPUT_EVENT_DEVICE_ADDED) {
+      libinput_device* device = libinput_event_get_device(event);
+      if (IsOurTablet(device)) {
+        board_->AddReconnect("pen");
+        board_->Set("pen", DeviceState::kOk, "pen tablet '" + tablet_name_ + "'", "libinput");
+      }
+      return;
+    }
+    if (type != LIBINPUT_EVENT_TABLET_TOOL_AXIS && type != LIBINPUT_EVENT_TABLET_TOOL_TIP &&
+        type != LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY)
+      return;
+    libinput_event_tablet_tool* tool = libinput_event_get_tablet_tool_event(event);
+    PenEvent pen;
+    pen.time_ns = static_cast<std::int64_t>(libinput_event_tablet_tool_get_time_usec(tool)) * 1000;
+    pen.x_px = static_cast<float>(libinput_event_tablet_tool_get_x_transformed(
+        tool, static_cast<uint32_t>(config_.screen_width_px)));
+    pen.y_px = static_cast<float>(libinput_event_tablet_tool_get_y_transformed(
+        tool, static_cast<uint32_t>(config_.screen_height_px)));
+    libinput_tablet_tool* t = libinput_event_tablet_tool_get_tool(tool);
+    pen.pressure = libinput_tablet_tool_has_pressure(t)
+                       ? static_cast<float>(libinput_event_tablet_tool_get_pressure(tool))
+                       : 0.0f;
+    if (libinput_tablet_tool_has_tilt(t)) {
+      pen.tilt_x_deg = static_cast<float>(libinput_event_tablet_tool_get_tilt_x(tool));
+      pen.tilt_y_deg = static_cast<float>(libinput_event_tablet_tool_get_tilt_y(tool));
+    }
+    if (type == LIBINPUT_EVENT_TABLET_TOOL_TIP) {
+      tip_down_ = libinput_event_tablet_tool_get_tip_state(tool) == LIBINPUT_TABLET_TOOL_TIP_DOWN;
+      pen.kind = tip_down_ ? PenEventKind::kTipDown : PenEventKind::kTipUp;
+    } else if (type == LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY) {
+      in_proximity_ = libinput_event_tablet_tool_get_proximity_state(tool) ==
+                      LIBINPUT_TABLET_TOOL_PROXIMITY_STATE_IN;
+      pen.kind = in_proximity_ ? PenEventKind::kProximityIn : PenEventKind::kProximityOut;
+      if (!in_proximity_) tip_down_ = false;
+    }
+    pen.tip_down = tip_down_;
+    pen.in_proximity = in_proximity_;
+    queue_.TryPush(pen);
+  }
+
+  PenConfig config_;
+  DeviceStatusBoard* board_;
+  std::unique_ptr<udev, UdevDeleter> udev_;
+  std::unique_ptr<libinput, LibinputDeleter> input_;
+  std::string tablet_name_;
+  int stop_fd_ = -1;
+  std::thread thread_;
+  bool tip_down_ = false;
+  bool in_proximity_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<PenSource> MakeLibinputPenSource(const PenConfig& config,
+                                                 DeviceStatusBoard& board) {
+  return std::make_unique<LibinputPenSource>(config, board);
+}
+
+std::unique_ptr<PenSource> OpenPen(const PenConfig& config, DeviceStatusBoard& board,
+                                   std::unique_ptr<PenSource> source) {
+  if (!source) source = MakeLibinputPenSource(config, board);
+  std::string error;
+  if (!source->Start(&error)) {
+    board.Set("pen", DeviceState::kMissing, error + "; mouse/touch fallback (no pressure or tilt)",
+              source->Name());
+    return nullptr;
+  }
+  board.Set("pen", DeviceState::kOk, std::string("pen tablet via ") + source->Name(),
+            source->Name());
+  return source;
+}
+
+}  // namespace sas::platform

@@ -1,0 +1,176 @@
+// Audio output supervision through the fake device: lost mid-stroke, silent meanwhile, reopened
+// with back-off when it returns; one log line per state change; the offline renderer runs the
+// same callback core.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "platform/audio/audio_input.h"
+#include "platform/audio/audio_output.h"
+#include "platform/audio/fake_audio_backend.h"
+
+using namespace sas::platform;
+
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+// A "stroke": a running ramp on ch 1 and its negative on ch 2, so every rendered frame is
+// distinguishable and the renderer's progress is visible.
+class RampRenderer final : public AudioRenderer {
+ public:
+  void Render(float* out, int frames, int channels) noexcept override {
+    for (int i = 0; i < frames; ++i) {
+      const float v = static_cast<float>(n_++) * 1e-4f;
+      out[i * channels] = v;
+      out[i * channels + 1] = -v;
+    }
+  }
+  long rendered() const { return n_; }
+
+ private:
+  long n_ = 1;
+};
+
+}  // namespace
+
+TEST_CASE("audio device lost mid-stroke and back: lost once, silent, reopened with back-off",
+          "[platform]") {
+  FakeAudioStreamBackend::Shared device;
+  RampRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  AudioOutputConfig config;
+  config.reopen_backoff_initial_s = 0.25;
+  config.reopen_backoff_max_s = 2.0;
+  SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer, config,
+                               board);
+  REQUIRE(output.Start());
+  CHECK(board.Get("audio_out").state == DeviceState::kOk);
+  CHECK(logger.Count() == 1);  // "ok: playing on ..."
+
+  std::int64_t now = 0;
+  FakeAudioStreamBackend::Pump(device, 10);  // mid-stroke
+  output.Poll(now);
+  CHECK(output.Running());
+  const long rendered_before = renderer.rendered();
+
+  FakeAudioStreamBackend::Unplug(device);
+  output.Poll(now += 10 * kMs);
+  CHECK_FALSE(output.Running());
+  auto status = board.Get("audio_out");
+  CHECK(status.state == DeviceState::kLost);
+  CHECK(status.message.find("running silent") != std::string::npos);
+  REQUIRE(logger.Count() == 2);
+  CHECK(logger.Recent().back().Text().rfind("warn audio_out: lost:", 0) == 0);
+
+  // While away: the renderer is not called, reopen attempts back off 0.25, 0.5, 1, 2, 2 s and
+  // log nothing.
+  const int attempts_before = device.open_attempts;
+  std::vector<std::int64_t> attempt_times;
+  for (int step = 0; step < 800; ++step) {  // 8 s in 10 ms control ticks
+    now += 10 * kMs;
+    const int before = device.open_attempts;
+    output.Poll(now);
+    if (device.open_attempts != before) attempt_times.push_back(now);
+    FakeAudioStreamBackend::Pump(device, 1);
+  }
+  CHECK(renderer.rendered() == rendered_before);
+  CHECK(logger.Count() == 2);
+  REQUIRE(attempt_times.size() >= 4);
+  CHECK(device.open_attempts - attempts_before == static_cast<int>(attempt_times.size()));
+  // Gaps between attempts double up to the cap (within one 10 ms tick).
+  std::vector<double> gaps_s;
+  for (std::size_t i = 1; i < attempt_times.size(); ++i)
+    gaps_s.push_back(static_cast<double>(attempt_times[i] - attempt_times[i - 1]) * 1e-9);
+  CHECK(gaps_s[0] == Approx(0.5).margin(0.011));
+  CHECK(gaps_s[1] == Approx(1.0).margin(0.011));
+  CHECK(gaps_s[2] == Approx(2.0).margin(0.011));
+  CHECK(gaps_s.back() == Approx(2.0).margin(0.011));
+
+  FakeAudioStreamBackend::Replug(device);
+  for (int step = 0; step < 300 && !output.Running(); ++step) output.Poll(now += 10 * kMs);
+  REQUIRE(output.Running());
+  status = board.Get("audio_out");
+  CHECK(status.state == DeviceState::kOk);
+  CHECK(status.reconnects == 1);
+  CHECK(logger.Count() == 3);
+  CHECK(logger.Recent().back().Text().find("reopened") != std::string::npos);
+  FakeAudioStreamBackend::Pump(device, 5);
+  CHECK(renderer.rendered() == rendered_before + 5 * config.frames_per_buffer);
+}
+
+TEST_CASE("a stalled device (no callbacks) counts as lost", "[platform]") {
+  FakeAudioStreamBackend::Shared device;
+  RampRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  AudioOutputConfig config;
+  config.stall_timeout_s = 0.5;
+  SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer, config,
+                               board);
+  REQUIRE(output.Start());
+  const std::int64_t t0 = 1'000'000 * kMs;
+  output.Poll(t0);
+  FakeAudioStreamBackend::Pump(device, 1);
+  output.Poll(t0 + 400 * kMs);
+  CHECK(output.Running());
+  output.Poll(t0 + 901 * kMs);  // 501 ms since the last progress
+  CHECK_FALSE(output.Running());
+  CHECK(board.Get("audio_out").message.find("no audio callbacks") != std::string::npos);
+}
+
+TEST_CASE("offline output runs the same callback in a loop and counts blocks", "[platform]") {
+  RampRenderer renderer;
+  AudioOutputConfig config;
+  config.frames_per_buffer = 64;
+  OfflineAudioOutput offline(renderer, config);
+  REQUIRE(offline.Start());
+  offline.RenderBlocks(10);
+  const auto& buffer = offline.buffer();
+  REQUIRE(buffer.size() == 10u * 64u * 2u);
+  for (std::size_t i = 0; i < buffer.size() / 2; ++i) {
+    CHECK(buffer[2 * i] == static_cast<float>(i + 1) * 1e-4f);
+    CHECK(buffer[2 * i + 1] == -buffer[2 * i]);
+  }
+  const auto stats = offline.Stats();
+  CHECK(stats.callbacks == 10);
+  CHECK(stats.frames == 640);
+  CHECK(stats.xruns == 0);
+  CHECK(stats.heartbeat_ns > 0);
+}
+
+TEST_CASE("voice recorder fills its buffer, meters level and flags clipping and silence",
+          "[platform]") {
+  VoiceRecorderConfig config;
+  config.sample_rate_hz = 8000;
+  config.max_duration_s = 0.5;
+  FakeAudioInput input(config, 100);
+  REQUIRE(input.Start());
+  auto& rec = input.recorder();
+  std::vector<float> quiet(8000, 1e-4f);  // -80 dBFS
+  rec.Arm();
+  input.Feed(quiet.data(), quiet.size());
+  CHECK_FALSE(rec.Recording());  // stopped by itself at 0.5 s
+  auto take = rec.Take();
+  CHECK(take.samples.size() == 4000);
+  CHECK(take.duration_s == Approx(0.5));
+  CHECK(take.silent);
+  CHECK_FALSE(take.clipped);
+
+  std::vector<float> loud(1000);
+  for (std::size_t i = 0; i < loud.size(); ++i)
+    loud[i] = (i == 500 || i == 501) ? -1.0f : 0.5f * std::sin(0.05f * static_cast<float>(i));
+  rec.Arm();
+  input.Feed(loud.data(), loud.size());
+  CHECK(rec.Recording());
+  CHECK(rec.Level() > 0.3f);
+  rec.Stop();
+  take = rec.Take();
+  CHECK(take.samples.size() == 1000);
+  CHECK(take.clipped);
+  CHECK(take.clipped_samples == 2);
+  CHECK_FALSE(take.silent);
+  CHECK(take.peak == 1.0f);
+}
