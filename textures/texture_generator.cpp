@@ -338,7 +338,7 @@ TextureOut BrokenGlass(const Canvas& c) {
       albedo(y, x) = cv::Vec3f(static_cast<float>(sky * 1.15), static_cast<float>(sky * 1.05),
                                static_cast<float>(sky * 0.95));
       glint(y, x) = static_cast<float>(
-          (0.30 + 0.25 * std::clamp<double>(sparkle(y, x), -1.0, 2.0)) * groove(y, x) / 0.35);
+          (0.38 + 0.18 * std::clamp<double>(sparkle(y, x), -1.0, 2.0)) * groove(y, x) / 0.35);
     }
   }
   Look look;
@@ -510,7 +510,7 @@ TextureOut CrackedGround(const Canvas& c) {
       const double curl = 0.3 * std::exp(-edge / (30.0 * c.scale));
       const double plate = 2.0 + curl + 0.006 * rough(y, x);
       // Crack: steep walls over ~2 px down to a floor 1.8 mm below.
-      const double wall = SmoothStep(half_width - 1.0, half_width + 1.5, edge);
+      const double wall = SmoothStep(half_width - 0.6, half_width + 0.9, edge);
       h(y, x) = static_cast<float>(0.2 + (plate - 0.2) * wall);
       floor_mask(y, x) = static_cast<float>(1.0 - wall);
     }
@@ -518,9 +518,11 @@ TextureOut CrackedGround(const Canvas& c) {
   cv::Mat3f albedo(c.height, c.width);
   const cv::Mat1f tint = Fbm(rng, c, 70.0 * c.scale, 3);
   const cv::Mat1f speck = BlurredNoise(rng, c, 0.9 * c.scale);
+  const cv::Mat1f sand = BlurredNoise(rng, c, 2.2 * c.scale);  // sand and silt grains
   for (int y = 0; y < c.height; ++y) {
     for (int x = 0; x < c.width; ++x) {
-      const double v = (1.0 + 0.07 * tint(y, x)) * (1.0 + 0.018 * speck(y, x));
+      const double v =
+          (1.0 + 0.09 * tint(y, x)) * (1.0 + 0.018 * speck(y, x)) * (1.0 + 0.05 * sand(y, x));
       const double f = floor_mask(y, x);
       albedo(y, x) = cv::Vec3f(static_cast<float>((0.42 - 0.22 * f) * v),
                                static_cast<float>((0.56 - 0.30 * f) * v),
