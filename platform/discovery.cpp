@@ -1,5 +1,9 @@
-// Aggregates the per-device reports (see discovery.h).
+// Aggregates the per-device reports and the choice the kiosk would make (see discovery.h). The
+// choice rules are the ones the backends apply at start: audio by name (exact, else unique
+// substring), switches gpio -> MCP2221A -> keys for "auto", pen = first tablet-tool device.
 #include "platform/discovery.h"
+
+#include <algorithm>
 
 #include "platform/audio/audio_devices.h"
 #include "platform/gpio/gpio_chips.h"
@@ -8,15 +12,92 @@
 #include "platform/watchdog/systemd_notifier.h"
 
 namespace sas::platform {
+namespace {
 
-DeviceReport DiscoverDevices() {
+const AudioDeviceInfo* PickAudio(const std::vector<AudioDeviceInfo>& devices,
+                                 const std::string& name, bool output) {
+  auto channels = [output](const AudioDeviceInfo& d) {
+    return output ? d.max_output_channels : d.max_input_channels;
+  };
+  const AudioDeviceInfo* partial = nullptr;
+  int partial_count = 0;
+  for (const auto& d : devices) {
+    if (channels(d) <= 0) continue;
+    if (d.name == name) return &d;
+    if (d.name.find(name) != std::string::npos) {
+      partial = &d;
+      ++partial_count;
+    }
+  }
+  return partial_count == 1 ? partial : nullptr;
+}
+
+void AddAudioUse(DeviceReport& report, const std::vector<AudioDeviceInfo>& devices,
+                 const std::string& name, bool output) {
+  const AudioDeviceInfo* d = PickAudio(devices, name, output);
+  const std::string what = output ? "audio out" : "audio in";
+  if (d == nullptr) {
+    report.push_back({"use", false,
+                      what + ": configured device '" + name + "' not present -> " +
+                          (output ? "runs silent, retries" : "recording disabled")});
+    return;
+  }
+  const int ch = output ? d->max_output_channels : d->max_input_channels;
+  std::string detail = what + ": '" + d->name + "' (" + std::to_string(ch) + " ch)";
+  if (output && ch < 2) detail += " -- only 1 channel: no transducer channel";
+  report.push_back({"use", output ? ch >= 2 : true, detail});
+}
+
+}  // namespace
+
+DeviceReport DiscoverDevices(const DeviceSelection& selection) {
   DeviceReport report;
   ReportAudioDevices(report);
   ReportGpioChips(report);
   ReportHidAdapters(report);
   ReportTablets(report);
   ReportSystemd(report);
+
+  const auto audio = ListAudioDevices();
+  AddAudioUse(report, audio, selection.audio_output, true);
+  AddAudioUse(report, audio, selection.audio_input, false);
+
+  const auto chips = ListGpioChips();
+  const bool chip_found = std::any_of(chips.begin(), chips.end(), [&](const GpioChipInfo& c) {
+    return c.name == selection.gpio_chip || c.label == selection.gpio_chip ||
+           "/dev/" + c.name == selection.gpio_chip;
+  });
+  const auto adapters = ListMcp2221Adapters();
+  const std::string& backend = selection.switches_backend;
+  std::string switches;
+  bool switches_ok = true;
+  if ((backend == "gpio" || backend == "auto") && chip_found) {
+    switches = "GPIO " + selection.gpio_chip + " lines " + selection.gpio_lines +
+               " (tokens 1-4, record), debounce 30 ms";
+  } else if ((backend == "mcp2221" || backend == "auto") && !adapters.empty()) {
+    switches = "MCP2221A " + adapters.front().path + " GP0-3, record on key R";
+  } else {
+    switches_ok = backend == "keyboard";
+    switches = "keys 1-4 (toggle tokens) and R (record)";
+    if (!switches_ok)
+      switches +=
+          " -- no " + (backend == "auto" ? std::string("GPIO chip or USB adapter") : backend);
+  }
+  report.push_back({"use", switches_ok, "token switches: " + switches});
+
+  const auto tablets = ListTablets();
+  const auto tablet = std::find_if(tablets.begin(), tablets.end(), [&](const TabletInfo& t) {
+    return selection.pen_device.empty() || t.name.find(selection.pen_device) != std::string::npos;
+  });
+  report.push_back({"use", tablet != tablets.end(),
+                    tablet != tablets.end()
+                        ? "pen: " + tablet->name + " via libinput (pressure, tilt)"
+                        : std::string("pen: mouse/touch via SDL2 (no pressure or tilt)")});
   return report;
+}
+
+DeviceReport DiscoverDevices() {
+  return DiscoverDevices(DeviceSelection{});
 }
 
 }  // namespace sas::platform

@@ -16,7 +16,10 @@ std::vector<GpioChipInfo> ListGpioChips(std::string* error) {
     if (name.rfind("gpiochip", 0) != 0) continue;
     try {
       gpiod::chip chip(entry.path().string(), gpiod::chip::OPEN_BY_PATH);
-      chips.push_back({chip.name(), chip.label(), chip.num_lines()});
+      GpioChipInfo info{chip.name(), chip.label(), chip.num_lines(), {}};
+      for (unsigned offset = 0; offset < chip.num_lines(); ++offset)
+        info.line_names.push_back(chip.get_line(offset).name());
+      chips.push_back(std::move(info));
     } catch (const std::exception& e) {
       if (error) *error = entry.path().string() + ": " + e.what();
     }
@@ -33,9 +36,20 @@ void ReportGpioChips(DeviceReport& report) {
                           ": token switches fall back to the USB adapter or keys 1-4"});
   }
   for (const auto& chip : chips) {
-    report.push_back(
-        {"gpio", true,
-         chip.name + " '" + chip.label + "', " + std::to_string(chip.num_lines) + " lines"});
+    // Named lines (offset=name) so a configuration can use either; unnamed ones are counted.
+    std::string names;
+    int shown = 0;
+    for (std::size_t i = 0; i < chip.line_names.size(); ++i) {
+      if (chip.line_names[i].empty()) continue;
+      if (++shown > 32) {
+        names += " ...";
+        break;
+      }
+      names += " " + std::to_string(i) + "=" + chip.line_names[i];
+    }
+    report.push_back({"gpio", true,
+                      chip.name + " '" + chip.label + "', " + std::to_string(chip.num_lines) +
+                          " lines" + (names.empty() ? std::string(" (unnamed)") : ":" + names)});
   }
 }
 

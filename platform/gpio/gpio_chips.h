@@ -12,6 +12,7 @@ struct GpioChipInfo {
   std::string name;   // gpiochip0
   std::string label;  // driver label, e.g. pinctrl-bcm2711
   unsigned num_lines = 0;
+  std::vector<std::string> line_names;  // by offset; empty string for unnamed lines
 };
 
 // Every GPIO chip the process may open; empty on machines without one (or without permission,

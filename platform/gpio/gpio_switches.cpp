@@ -82,7 +82,7 @@ class LibgpiodEventSource final : public GpioEventSource {
  private:
   gpiod::chip chip_;
   mutable gpiod::line_bulk bulk_;  // libgpiod 1.6 has no const operator[]
-  std::vector<int> inputs_;  // bulk index -> input 0..4
+  std::vector<int> inputs_;        // bulk index -> input 0..4
   std::string describe_;
 };
 
