@@ -14,14 +14,17 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// (1 - e^-r) / r and (r - 1 + e^-r) / r², with their series where the closed forms lose digits.
-double Phi1(double r) {
-  if (r < 1e-3) return 1.0 - r * (0.5 - r * (1.0 / 6.0 - r / 24.0));
-  return -std::expm1(-r) / r;
-}
-double Phi2(double r) {
-  if (r < 1e-3) return 0.5 - r * (1.0 / 6.0 - r * (1.0 / 24.0 - r / 120.0));
-  return (r + std::expm1(-r)) / (r * r);
+// φ1 = (1 - e^-r) / r and φ2 = (r - 1 + e^-r) / r², with their series where the closed forms
+// lose digits.
+void Phis(double r, double* phi1, double* phi2) {
+  if (r < 1e-3) {
+    *phi1 = 1.0 - r * (0.5 - r * (1.0 / 6.0 - r / 24.0));
+    *phi2 = 0.5 - r * (1.0 / 6.0 - r * (1.0 / 24.0 - r / 120.0));
+    return;
+  }
+  const double e = std::expm1(-r);
+  *phi1 = -e / r;
+  *phi2 = (r + e) / (r * r);
 }
 
 // Discrete gradient G(x0, x0 + d) of the contact potential and its derivative in d.
@@ -29,7 +32,7 @@ struct Secant {
   double g = 0.0;
   double dg = 0.0;
 };
-Secant PotentialSecant(const ImpactModel& m, double x0, double d) {
+Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
   const double x1 = x0 + d;
   Secant s;
   if (x0 <= 0.0 && x1 <= 0.0) return s;
@@ -37,16 +40,21 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double d) {
   if (x0 > 0.0 && x1 > 0.0 && std::fabs(d) <= 1e-4 * std::min(x0, x1)) {
     // Midpoint expansion: the plain difference quotient cancels for tiny d.
     const double mid = x0 + 0.5 * d;
-    const double p = std::pow(mid, a - 2.0);    // x^(α-2)
-    const double v1 = m.k * p * mid * mid;      // V'  = k x^α
-    const double v2 = m.k * a * p * mid;        // V'' = k α x^(α-1)
-    const double v3 = m.k * a * (a - 1.0) * p;  // V'''
-    s.g = v1 + v3 * d * d / 24.0;
-    s.dg = 0.5 * v2 + v3 * d / 12.0;  // derivative of the expansion in d (x0 fixed): V''/2 + ...
+    const double d1 = m.k * m.PowAlpha(mid);  // first derivative of V: k x^α
+    const double d2 = a * d1 / mid;           // second
+    const double d3 = (a - 1.0) * d2 / mid;   // third
+    s.g = d1 + d3 * d * d / 24.0;
+    s.dg = 0.5 * d2 + d3 * d / 12.0;  // derivative of the expansion in d (x0 fixed)
     return s;
   }
-  s.g = (m.Potential(x1) - m.Potential(x0)) / d;
-  s.dg = (m.Force(x1) - s.g) / d;
+  if (x1 <= 0.0) {
+    s.g = -v0 / d;  // V(x1) = 0
+    s.dg = -s.g / d;
+    return s;
+  }
+  const double f1 = m.k * m.PowAlpha(x1);
+  s.g = (f1 * x1 / (a + 1.0) - v0) / d;
+  s.dg = (f1 - s.g) / d;
   return s;
 }
 
@@ -55,8 +63,8 @@ struct NormalEval {
   double f = 0.0;
   double df = 0.0;
 };
-NormalEval NormalForce(const ImpactModel& m, double x0, double d, double h) {
-  const Secant s = PotentialSecant(m, x0, d);
+NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double h) {
+  const Secant s = PotentialSecant(m, x0, v0, d);
   const double p = 1.0 + m.mu * d / h;
   NormalEval e;
   if (p <= 0.0) return e;  // separating faster than 1/μ: Hunt–Crossley would pull; clamp to 0
@@ -68,15 +76,24 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double d, double h) {
 // Root of R(d) = d - c + s·F(d) (F nondecreasing in d, so R is strictly increasing).
 double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h) {
   if (x0 <= 0.0 && x0 + c <= 0.0) return c;  // the free motion never reaches the surface
+  const double v0 = m.Potential(x0);
   double hi = c;
-  const double f_hi = NormalForce(m, x0, hi, h).f;
+  const double f_hi = NormalForce(m, x0, v0, hi, h).f;
   if (!(f_hi > 0.0)) return c;
   // F(lo) <= F(hi) for lo < hi, so lo = c - s F(c) has R(lo) <= 0.
   double lo = c - compliance * f_hi;
+  // Start from the root of the problem linearised at d = 0 (resting contact: already close).
   double d = lo;
-  NormalEval e = NormalForce(m, x0, d, h);
+  if (x0 > 0.0) {
+    const double f0 = m.Force(x0);
+    const double slope0 = 0.5 * m.alpha * f0 / x0 + f0 * m.mu / h;
+    const double guess = (c - compliance * f0) / (1.0 + compliance * slope0);
+    if (guess > lo && guess < hi) d = guess;
+  }
+  NormalEval e = NormalForce(m, x0, v0, d, h);
   double r = d - c + compliance * e.f;
-  if (r >= 0.0) return d;
+  if (r == 0.0) return d;
+  if (d == lo && r > 0.0) return d;
   const double scale = std::max(std::fabs(x0), std::fabs(c)) + 1e-300;
   for (int iteration = 0; iteration < 100; ++iteration) {
     if (r < 0.0) {
@@ -89,9 +106,12 @@ double SolveNormal(const ImpactModel& m, double x0, double c, double compliance,
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     const double step = std::fabs(next - d);
     d = next;
-    e = NormalForce(m, x0, d, h);
+    e = NormalForce(m, x0, v0, d, h);
     r = d - c + compliance * e.f;
-    if (r == 0.0 || step <= 2.0 * kEps * scale || hi - lo <= 2.0 * kEps * scale) break;
+    // Converged when the residual is at rounding level of its terms, or the iterate stalls.
+    if (std::fabs(r) <= 4.0 * kEps * (std::fabs(c) + std::fabs(d)) || step <= 2.0 * kEps * scale ||
+        hi - lo <= 2.0 * kEps * scale)
+      break;
   }
   return d;
 }
@@ -109,6 +129,23 @@ double SolveFriction(const FrictionModel& fm, double z0, double a, double coupli
   if (!(coupling > 0.0)) return a;
   double r_a = FrictionResidual(fm, z0, a, a, coupling, h, fn, noise);
   if (r_a == 0.0) return a;
+  {
+    // Fast path: secant iteration started with the slope of the elastic (sticking) regime. The
+    // residual is nearly linear where the bristle is not saturating, so this usually converges
+    // in 2–3 evaluations; if it does not, the bracketed solve below takes over.
+    double u_prev = a, r_prev = r_a;
+    double u = a - r_a / (1.0 + coupling * (0.5 * fm.sigma0 + (fm.sigma1 + fm.sigma2) / h));
+    for (int i = 0; i < 8; ++i) {
+      const double r = FrictionResidual(fm, z0, u, a, coupling, h, fn, noise);
+      if (r == 0.0) return u;
+      const double step = r * (u - u_prev) / (r - r_prev);
+      if (!std::isfinite(step)) break;
+      u_prev = u;
+      r_prev = r;
+      u -= step;
+      if (std::fabs(step) <= 4.0 * kEps * (std::fabs(u) + std::fabs(u_prev))) return u;
+    }
+  }
   double delta = 2.0 * std::fabs(r_a) + 1e-30;
   double lo = a, hi = a, r_lo = r_a, r_hi = r_a;
   bool bracketed = false;
@@ -163,16 +200,20 @@ void ImpactModel::Set(const ImpactParams& params) {
   k = params.stiffness;
   mu = params.dissipation_s_per_m;
   alpha = params.shape_alpha;
+  shape_ = alpha == 1.0   ? Shape::kOne
+           : alpha == 1.5 ? Shape::kThreeHalves
+           : alpha == 2.0 ? Shape::kTwo
+                          : Shape::kOther;
 }
 
 double ImpactModel::Potential(double x) const {
   if (x <= 0.0) return 0.0;
-  return k * std::pow(x, alpha + 1.0) / (alpha + 1.0);
+  return k * PowAlpha(x) * x / (alpha + 1.0);
 }
 
 double ImpactModel::Force(double x) const {
   if (x <= 0.0) return 0.0;
-  return k * std::pow(x, alpha);
+  return k * PowAlpha(x);
 }
 
 void FrictionModel::Set(const FrictionParams& params) {
@@ -229,8 +270,9 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
     double piece = left;
     if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
     const double r = alpha * piece / z_ss;
-    const double p1 = Phi1(r);
-    integral += piece * (piece * Phi2(r) + w * p1);
+    double p1 = 0.0, p2 = 0.0;
+    Phis(r, &p1, &p2);
+    integral += piece * (piece * p2 + w * p1);
     w += (piece - alpha * w * piece / z_ss) * p1;
     left -= piece;
   }
@@ -259,7 +301,7 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
     if (in.impact_on) {
       const double d =
           SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h);
-      force = NormalForce(impact, in.x0, d, in.h).f;
+      force = NormalForce(impact, in.x0, impact.Potential(in.x0), d, in.h).f;
     }
     if (!friction_on) break;
     du = SolveFriction(friction, in.z0, in.free_du + in.coupling * force, in.coupling, in.h,

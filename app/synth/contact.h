@@ -25,6 +25,7 @@
 // Energy is therefore never created by the numerics (tested), for any k, α, mass or step; accuracy
 // is second order in h, so the contact is sub-stepped ("oversampled") while it is active.
 
+#include <cmath>
 #include <cstdint>
 
 #include "synth/material_params.h"
@@ -44,6 +45,23 @@ struct ImpactModel {
   void Set(const ImpactParams& params);
   double Potential(double x) const;  // k x₊^(α+1)/(α+1), J
   double Force(double x) const;      // k x₊^α (elastic part), N
+  // x^α for x > 0, with sqrt/multiply fast paths for α = 1, 1.5, 2 (the common shapes).
+  double PowAlpha(double x) const {
+    switch (shape_) {
+      case Shape::kOne:
+        return x;
+      case Shape::kThreeHalves:
+        return x * std::sqrt(x);
+      case Shape::kTwo:
+        return x * x;
+      default:
+        return std::pow(x, alpha);
+    }
+  }
+
+ private:
+  enum class Shape : std::uint8_t { kOne, kThreeHalves, kTwo, kOther };
+  Shape shape_ = Shape::kThreeHalves;
 };
 
 struct FrictionModel {
