@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/render_command.h"
 #include "platform/discovery.h"
 #include "sas/version.h"
 #include "ui/display_probe.h"
@@ -19,6 +20,8 @@ void PrintUsage() {
   std::printf(
       "usage: sketch-a-scratch [command] [options]\n"
       "  (no command)     start the kiosk; headless default when there is no display\n"
+      "  render ...       render a material, surface and gesture to a 2-channel WAV\n"
+      "                   (sketch-a-scratch render --help)\n"
       "  --list-devices   print the audio devices, GPIO chips, USB adapters and tablets found\n"
       "  --version        print the version\n"
       "  --help           this text\n");
@@ -69,6 +72,9 @@ int main(int argc, char** argv) {
   if (command == "--version") {
     std::printf("sketch-a-scratch %s\n", sas::kVersion);
     return EXIT_SUCCESS;
+  }
+  if (command == "render") {
+    return sas::kiosk::RunRenderCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
   }
   if (command == "--list-devices") {
     PrintDeviceReport(sas::ui::ProbeDisplay());

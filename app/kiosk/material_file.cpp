@@ -3,6 +3,8 @@
 // key specs per TOML table, so the accepted keys, their types and ranges are written once.
 #include "kiosk/material_file.h"
 
+#include "kiosk/contact_scheme_names.h"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -77,32 +79,16 @@ Setter<Target> Flag(bool Target::*member) {
   };
 }
 
-struct SchemeName {
-  const char* name;
-  synth::ContactScheme scheme;
-};
-constexpr SchemeName kSchemes[] = {
-    {"explicit_passive", synth::ContactScheme::kExplicitPassive},
-    {"trapezoid_newton", synth::ContactScheme::kTrapezoidNewton},
-    {"discrete_gradient", synth::ContactScheme::kDiscreteGradient},
-    {"energy_quadratised", synth::ContactScheme::kEnergyQuadratised},
-};
-
 Setter<synth::ImpactParams> Scheme() {
   return [](const toml::node& node, synth::ImpactParams& impact, const std::string& where) {
-    std::string choices;
-    for (const auto& entry : kSchemes)
-      choices += std::string(choices.empty() ? "" : ", ") + entry.name;
-    if (!node.is_string())
+    const std::string choices = ContactSchemeChoices();
+    if (!node.is_string()) {
       throw MaterialError(where + "expected a string (one of " + choices + ")");
-    const std::string value = *node.value<std::string>();
-    for (const auto& entry : kSchemes) {
-      if (value == entry.name) {
-        impact.scheme = entry.scheme;
-        return;
-      }
     }
-    throw MaterialError(where + "unknown scheme \"" + value + "\" (one of " + choices + ")");
+    const std::string value = *node.value<std::string>();
+    if (!ParseContactScheme(value, &impact.scheme)) {
+      throw MaterialError(where + "unknown scheme \"" + value + "\" (one of " + choices + ")");
+    }
   };
 }
 
@@ -267,7 +253,9 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
 
   Material material;  // built locally and returned whole: a throw leaves the caller's data alone
   material.name = name;
+  // In the order of a material file, so the first problem in the file is the one reported.
   ParseDescription(root, source_name, material.description);
+  ParseModes(root, source_name, material.params.resonator);
   ApplyTable(RequireTable(root, "probe", source_name), "probe", ProbeKeys(), material.params.probe,
              source_name);
   ApplyTable(RequireTable(root, "impact", source_name), "impact", ImpactKeys(),
@@ -279,7 +267,6 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
     throw MaterialError(Where(source_name, LineOf(*friction.get("mu_d")), "friction.mu_d") +
                         "must not exceed friction.mu_s");
   }
-  ParseModes(root, source_name, material.params.resonator);
   return material;
 }
 

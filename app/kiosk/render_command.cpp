@@ -21,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kMaxRenderS = 600.0;
+constexpr float kNormalizePeak = 0.891250938f;  // -1 dBFS
 
 double Db(double linear) {
   return linear > 0.0 ? 20.0 * std::log10(linear) : -999.0;
@@ -78,7 +79,8 @@ const char* RenderUsage() {
          "                       the installed share/sketch-a-scratch/materials\n"
          "  --format float|pcm24 WAV sample format (default float)\n"
          "  --style auto|scrape|rub|roll   probe style (default auto: from pen tilt)\n"
-         "  --gain-db DB, --haptic-gain-db DB   output gains (default 0)\n";
+         "  --gain-db DB, --haptic-gain-db DB   output gains (default 0)\n"
+         "  --normalize          scale each channel to a -1 dBFS peak after rendering\n";
 }
 
 std::vector<std::string> MaterialSearchDirs(const std::string& cli_dir) {
@@ -145,6 +147,9 @@ RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
       options.sound_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
     } else if (flag == "--haptic-gain-db") {
       options.haptic_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
+    } else if (flag == "--normalize") {
+      if (has_value) throw RenderError("--normalize takes no value");
+      options.normalize = true;
     } else if (flag == "--format") {
       const std::string format = next();
       if (format == "float") {
@@ -250,6 +255,21 @@ RenderSummary Render(const RenderOptions& options) {
   summary.duration_s = static_cast<double>(total_frames) / fs_hz;
   summary.realtime_factor = summary.duration_s > 0.0 ? summary.compute_s / summary.duration_s : 0.0;
 
+  if (options.normalize) {
+    for (int channel = 0; channel < 2; ++channel) {
+      float peak = 0.0f;
+      for (std::int64_t i = 0; i < total_frames; ++i) {
+        peak = std::max(peak, std::abs(audio[static_cast<std::size_t>(i * 2 + channel)]));
+      }
+      if (peak <= 0.0f) continue;  // a silent channel stays silent
+      const float gain = kNormalizePeak / peak;
+      for (std::int64_t i = 0; i < total_frames; ++i) {
+        audio[static_cast<std::size_t>(i * 2 + channel)] *= gain;
+      }
+      summary.normalize_gain[channel] = gain;
+    }
+  }
+
   for (int channel = 0; channel < 2; ++channel) {
     double peak = 0.0;
     double sum_squares = 0.0;
@@ -274,16 +294,21 @@ RenderSummary Render(const RenderOptions& options) {
 }
 
 std::string FormatSummary(const RenderOptions& options, const RenderSummary& summary) {
-  char text[512];
+  char normalized[96] = "";
+  if (options.normalize) {
+    std::snprintf(normalized, sizeof normalized, " | normalized %+.1f dB / %+.1f dB",
+                  Db(summary.normalize_gain[0]), Db(summary.normalize_gain[1]));
+  }
+  char text[640];
   std::snprintf(
       text, sizeof text,
       "%s: %.2f s (gesture %.2f s) at %d Hz, %s on %s, %s | sound peak %s rms %s | "
-      "haptic peak %s rms %s | last 100 ms %s | real-time factor %.4f",
+      "haptic peak %s rms %s | last 100 ms %s%s | real-time factor %.4f",
       options.out_path.c_str(), summary.duration_s, summary.gesture_s, options.sample_rate_hz,
       summary.material_file.c_str(), options.profile.c_str(), options.gesture.c_str(),
       FormatDb(summary.channels[0].peak).c_str(), FormatDb(summary.channels[0].rms).c_str(),
       FormatDb(summary.channels[1].peak).c_str(), FormatDb(summary.channels[1].rms).c_str(),
-      FormatDb(summary.tail_end_peak).c_str(), summary.realtime_factor);
+      FormatDb(summary.tail_end_peak).c_str(), normalized, summary.realtime_factor);
   return text;
 }
 

@@ -7,7 +7,7 @@
 //   sketch-a-scratch render --material wood --profile grating --gesture "slow stroke"
 //                           --out out.wav [--fs 48000] [--tail-s 2] [--materials-dir DIR]
 //                           [--format float|pcm24] [--style auto|scrape|rub|roll]
-//                           [--gain-db 0] [--haptic-gain-db 0]
+//                           [--gain-db 0] [--haptic-gain-db 0] [--normalize]
 //
 // Materials are looked up by name in, in order: --materials-dir, $SAS_DATA_DIR/materials, the
 // source tree's textures/materials, <install prefix>/share/sketch-a-scratch/materials; the first
@@ -43,6 +43,9 @@ struct RenderOptions {
   std::optional<synth::ProbeStyle> style;  // empty: by probe width (pen tilt)
   double sound_gain_db = 0.0;
   double haptic_gain_db = 0.0;
+  // Scale each channel after rendering so its peak is at -1 dBFS (for listening to quiet
+  // renders; the synth's own scale is 1 m/s pickup velocity = full scale).
+  bool normalize = false;
   int block_frames = 256;  // the scene's block size (output does not depend on it)
 };
 
@@ -56,9 +59,10 @@ struct RenderSummary {
   double duration_s = 0.0;
   double gesture_s = 0.0;
   ChannelStats channels[2];
-  double tail_end_peak = 0.0;    // max |sample| over both channels in the last 100 ms
-  double compute_s = 0.0;        // wall time spent in Scene::Process
-  double realtime_factor = 0.0;  // compute_s / duration_s (< 1: faster than real time)
+  double normalize_gain[2] = {1.0, 1.0};  // applied by --normalize (linear)
+  double tail_end_peak = 0.0;             // max |sample| over both channels in the last 100 ms
+  double compute_s = 0.0;                 // wall time spent in Scene::Process
+  double realtime_factor = 0.0;           // compute_s / duration_s (< 1: faster than real time)
   std::vector<std::string> warnings;
 };
 
