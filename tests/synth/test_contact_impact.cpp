@@ -113,3 +113,17 @@ TEST_CASE(
     CHECK((n == 1 || t_c * kFs * (n - 1) < kTargetContactSamples));
   }
 }
+
+TEST_CASE("contact time with dissipation matches the quadrature closed form within 1e-3", "[dsp]") {
+  for (const double k : {1e6, 1e7, 1e8}) {
+    for (const double mu_v : {0.1, 1.0, 2.0}) {
+      const double expected = HuntCrossleyContactTime(kMass, k, mu_v, kAlpha, 1.0);
+      for (const double phase : {0.05, 0.5, 0.95}) {
+        const auto run = SimulateRigidWallImpact(kMass, k, mu_v, kAlpha, 1.0, kFs,
+                                                 ContactScheme::kDiscreteGradient, 0, phase);
+        INFO("k " << k << " mu*v " << mu_v << " phase " << phase);
+        CHECK(run.contact_time_s == Approx(expected).epsilon(1e-3));
+      }
+    }
+  }
+}
