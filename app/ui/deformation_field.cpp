@@ -131,9 +131,9 @@ DeformSample DeformationField::At(float x, float y) const {
   if (!active() || u >= 1.0f) return {x, y, 1.0f};
 
   const float w = 1.0f - u;
-  const float g = w * w;
-  const float gx = -4.0f * w * dx * inv_r2;
-  const float gy = -4.0f * w * dy * inv_r2;
+  const float g = w * w * w;
+  const float gx = -6.0f * w * w * dx * inv_r2;
+  const float gy = -6.0f * w * w * dy * inv_r2;
   const float d = depth_px_;
   const float qx = drag_x_px_, qy = drag_y_px_;
 

@@ -4,8 +4,9 @@
 // stylus"; §5.2.2: visitors "popped" the virtual bubble wrap with it).
 //
 // Model. The screen shows an elastic skin. Under the tip it is pushed in by a dent of depth D and
-// dragged along by friction by a vector q, both over a compact biweight footprint
-// g(r) = (1 - r²/R²)² (r < R, zero outside, so nothing beyond R ever changes):
+// dragged along by friction by a vector q, both over a compact triweight footprint
+// g(r) = (1 - r²/R²)³ (r < R, zero outside, so nothing beyond R ever changes; its slope also
+// vanishes at R, so the shaded rim blends into the picture without a seam):
 //   - vertical force: D follows pressure^γ · max_depth with a first-order lag (fast when
 //     pressing, slower when relaxing after lift), exact exponential update for any frame time;
 //   - lateral force: q is the skin's stretch. Each step it gains follow · (D/max_depth) · Δtip
