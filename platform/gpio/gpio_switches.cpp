@@ -13,6 +13,8 @@
 namespace sas::platform {
 namespace {
 
+constexpr int kHeartbeatMs = 250;
+
 bool IsOffset(const std::string& spec) {
   return !spec.empty() && std::all_of(spec.begin(), spec.end(),
                                       [](unsigned char c) { return std::isdigit(c) != 0; });
@@ -153,10 +155,14 @@ void GpioSwitchInput::Run() {
   auto sink = [this](const SwitchEvent& e) { queue_.TryPush(e); };
   for (;;) {
     const std::int64_t deadline_ns = processor_.NextDeadlineNs();
-    int timeout_ms = -1;
+    const std::int64_t now_ns = MonotonicNowNs();
+    heartbeat_ns_.store(now_ns, std::memory_order_relaxed);
+    // Wake at least every 250 ms so the watchdog sees this thread alive while nobody touches a
+    // token; sooner when a debounce deadline is due.
+    int timeout_ms = kHeartbeatMs;
     if (deadline_ns >= 0) {
-      const std::int64_t wait_ns = std::max<std::int64_t>(0, deadline_ns - MonotonicNowNs());
-      timeout_ms = static_cast<int>((wait_ns + kNsPerMs - 1) / kNsPerMs);
+      const std::int64_t wait_ns = std::max<std::int64_t>(0, deadline_ns - now_ns);
+      timeout_ms = std::min(kHeartbeatMs, static_cast<int>((wait_ns + kNsPerMs - 1) / kNsPerMs));
     }
     for (auto& fd : fds) fd.revents = 0;
     const int n = poll(fds.data(), static_cast<nfds_t>(fds.size()), timeout_ms);

@@ -115,6 +115,7 @@ void Mcp2221SwitchInput::Lost(const std::string& why) {
 }
 
 void Mcp2221SwitchInput::Step(std::int64_t now_ns) {
+  heartbeat_ns_.store(now_ns, std::memory_order_relaxed);
   if (!transport_) {
     if (now_ns < next_reopen_ns_) return;
     next_reopen_ns_ = now_ns + static_cast<std::int64_t>(config_.reopen_interval_ms * 1e6);

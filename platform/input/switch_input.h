@@ -4,6 +4,8 @@
 // SPSC queue; the control thread drains it with Pop(). Start() failing means "use a fallback"
 // (see switch_factory.h); the status board entry is "switches".
 
+#include <atomic>
+#include <cstdint>
 #include <string>
 
 #include "platform/common/spsc_queue.h"
@@ -22,9 +24,13 @@ class SwitchInput {
   virtual void Stop() = 0;
   // Control thread: next debounced event, false when none is waiting.
   bool Pop(SwitchEvent& event) { return queue_.TryPop(event); }
+  // CLOCK_MONOTONIC time the backend's thread last ran its loop, for the watchdog; -1 when the
+  // backend has no thread of its own (keyboard: fed by the UI thread).
+  virtual std::int64_t HeartbeatNs() const { return heartbeat_ns_.load(std::memory_order_relaxed); }
 
  protected:
   SwitchQueue queue_;
+  std::atomic<std::int64_t> heartbeat_ns_{0};
 };
 
 // Keys 1-4 toggle tokens (press once to place, again to lift); R is the record button (down/up).
@@ -36,6 +42,7 @@ class KeyboardSwitchInput final : public SwitchInput {
   void Stop() override {}
   // `key` is the character ('1'..'4', 'r'/'R'); other keys are ignored (returns false).
   bool OnKey(char key, bool down, std::int64_t time_ns);
+  std::int64_t HeartbeatNs() const override { return -1; }
 
  private:
   bool placed_[kTokenCount] = {};

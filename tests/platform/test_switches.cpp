@@ -188,7 +188,8 @@ TEST_CASE("GPIO event thread emits a live edge only after the debounce time has 
   REQUIRE(events.size() == 1);
   CHECK(events[0].input == 1);
   CHECK(events[0].time_ns == t);
-  CHECK(seen - t >= 30 * kMs);  // the poll timeout waited for the quiet period
+  CHECK(seen - t >= 30 * kMs);      // the poll timeout waited for the quiet period
+  CHECK(input.HeartbeatNs() >= t);  // the thread woke for the deadline: alive for the watchdog
 }
 
 // ---- MCP2221A ----
@@ -310,6 +311,7 @@ TEST_CASE("MCP2221A poller debounces polled pins into token events", "[platform]
   CHECK(events[0].input == 2);
   CHECK(events[0].pressed);
   CHECK(events[0].time_ns == 15 * kMs);  // first edge of the burst
+  CHECK(input.HeartbeatNs() == 8 * 15 * kMs);
 }
 
 TEST_CASE("MCP2221A unplugged and replugged: one log line each, status lost then ok, resumes",
@@ -365,6 +367,7 @@ TEST_CASE("keys 1-4 toggle tokens and R is a momentary record button", "[platfor
   CHECK(keys.OnKey('R', false, 40));
   CHECK(keys.OnKey('2', true, 50));
   CHECK_FALSE(keys.OnKey('x', true, 60));
+  CHECK(keys.HeartbeatNs() == -1);  // no thread of its own: exempt from the watchdog
   std::vector<SwitchEvent> events;
   SwitchEvent e;
   while (keys.Pop(e)) events.push_back(e);
