@@ -57,6 +57,8 @@ double FiniteOr(double v, double fallback) {
 // Pickup amplitude (full scale = 1) below which the resonator counts as silent: -120 dBFS.
 constexpr double kSilence = 1e-6;
 constexpr std::uint64_t kNoiseSeed = 0x9E3779B97F4A7C15ull;
+// Commanded speeds are clamped here (m/s): far beyond any hand, still finite arithmetic.
+constexpr double kMaxSpeed = 100.0;
 
 }  // namespace
 
@@ -117,11 +119,11 @@ struct Scene::Impl {
     ProbeCommand c = raw;
     c.x_m = FiniteOr(c.x_m, x_m);
     c.y_m = FiniteOr(c.y_m, y_m);
-    c.velocity_mps = std::max(FiniteOr(c.velocity_mps, 0.0), 0.0);
+    c.velocity_mps = std::clamp(FiniteOr(c.velocity_mps, 0.0), 0.0, kMaxSpeed);
     c.normal_force_n = std::max(FiniteOr(c.normal_force_n, 0.0), 0.0);
     c.width_mm = std::max(FiniteOr(c.width_mm, 0.5), 0.0);
     c.penetration_m = std::max(FiniteOr(c.penetration_m, 0.0), 0.0);
-    c.landing_speed_mps = std::max(FiniteOr(c.landing_speed_mps, 0.0), 0.0);
+    c.landing_speed_mps = std::clamp(FiniteOr(c.landing_speed_mps, 0.0), 0.0, kMaxSpeed);
     c.burst_impulse_n_s = std::max(FiniteOr(c.burst_impulse_n_s, 0.0), 0.0);
     const double norm = std::hypot(FiniteOr(c.direction_x, 0.0), FiniteOr(c.direction_y, 0.0));
     if (norm > 0.0) {
@@ -154,13 +156,14 @@ struct Scene::Impl {
         burst_touched = false;
         burst_samples = 0;
       }
-      probe.velocity_mps -= c.burst_impulse_n_s / config.probe_mass_kg;
+      probe.velocity_mps -= std::min(c.burst_impulse_n_s / config.probe_mass_kg, kMaxSpeed);
     }
   }
 
   void RenderFrame(float* frame) {
     x_m += gesture.velocity_mps * gesture.direction_x / fs;
     y_m += gesture.velocity_mps * gesture.direction_y / fs;
+    if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
     if (probe.active) {
       const double next = Felt(x_m, y_m);
       SampleDrive drive;
@@ -179,6 +182,12 @@ struct Scene::Impl {
       }
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
+      // Last line of defence against absurd input: a non-finite probe is parked, never kept.
+      if (!std::isfinite(probe.height_m + probe.velocity_mps + probe.bristle_m + probe.normal_n +
+                         probe.friction_n)) {
+        probe = ProbeDynamics{};
+        burst_flight = false;
+      }
       if (burst_flight) {
         ++burst_samples;
         if (probe.touched || probe.compression_m > 0.0) burst_touched = true;
@@ -190,7 +199,9 @@ struct Scene::Impl {
     } else {
       AdvanceModes(modes, modes.full, 0.0);
     }
-    output.Process(modes.PickupVelocity(), &frame[0], &frame[1]);
+    const double pickup = modes.PickupVelocity();
+    if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
+    output.Process(pickup, &frame[0], &frame[1]);
   }
 };
 

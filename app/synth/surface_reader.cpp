@@ -38,7 +38,7 @@ double SurfaceReader::Integral(double px, double py) const {
 }
 
 double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
-  if (field_.empty()) return 0.0;
+  if (field_.empty() || !std::isfinite(x_m) || !std::isfinite(y_m)) return 0.0;
   const double pitch = field_.pitch_m;
   const double w = static_cast<double>(field_.width), hgt = static_cast<double>(field_.height);
   // Window at least one pixel wide: a point probe reads the pixel it is on.
@@ -83,7 +83,7 @@ double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetr
     // Bottom of a ball of radius r rolling along the stroke: max over |s| <= r of
     // profile(p + s·dir) + sqrt(r² - s²) - r, sampled at the field pitch (at most 129 points).
     const double r = std::max(ball_radius_m, 0.5 * width_m);
-    const int half_count = std::clamp(static_cast<int>(r / field_.pitch_m), 1, 64);
+    const int half_count = static_cast<int>(std::clamp(r / field_.pitch_m, 1.0, 64.0));
     const double ds = r / half_count;
     const double norm = std::hypot(direction_x, direction_y);
     const double dx = norm > 0.0 ? direction_x / norm : 1.0;

@@ -161,6 +161,22 @@ TEST_CASE("output never exceeds 1 nor becomes NaN with exaggerated gains and hos
   bad.width_mm = std::numeric_limits<double>::quiet_NaN();
   bad.burst_impulse_n_s = std::numeric_limits<double>::infinity();
   gesture.push_back({20000, bad});
+  ProbeCommand absurd = bad;
+  absurd.tip_down = false;
+  gesture.push_back({21000, absurd});
+  absurd.tip_down = true;
+  absurd.x_m = 1e300;
+  absurd.velocity_mps = 1e300;
+  absurd.landing_speed_mps = 1e300;
+  absurd.normal_force_n = 1e300;
+  absurd.width_mm = 1e300;
+  absurd.style = ProbeStyle::kRoll;
+  gesture.push_back({22000, absurd});
+  ProbeCommand sane = Gesture().front().command;
+  sane.tip_down = false;
+  gesture.push_back({25000, sane});
+  sane.tip_down = true;
+  gesture.push_back({25001, sane});
   const auto out = Render(scene, gesture, 30000, 128);
   float peak = 0.0f;
   for (float s : out) {
@@ -169,6 +185,9 @@ TEST_CASE("output never exceeds 1 nor becomes NaN with exaggerated gains and hos
     peak = std::max(peak, std::fabs(s));
   }
   CHECK(peak > 0.9f);  // the gain really was exaggerated
+  float tail = 0.0f;   // and the scene still plays after the absurd commands
+  for (std::size_t i = 2 * 26000; i < out.size(); ++i) tail = std::max(tail, std::fabs(out[i]));
+  CHECK(tail > 0.1f);
 }
 
 TEST_CASE("soft limiter is the identity below the knee, odd, monotone and bounded by 1", "[dsp]") {
@@ -298,4 +317,39 @@ TEST_CASE(
   CHECK(peak < 1e-6f);  // -120 dBFS
   scene.Process(&tap, 1, out.data(), 480);
   CHECK(!scene.IsIdle());
+}
+
+TEST_CASE(
+    "passive sweep: one command at a set velocity advances the probe by v per second and "
+    "the profile under it keeps the resonator sounding, a flat surface does not",
+    "[dsp][render]") {
+  auto sweep = [](const std::vector<float>& profile, double* x_after) {
+    test::OwnedField field(static_cast<int>(profile.size()), 1, 0.153e-3, profile);
+    MaterialParams m = Wood();
+    m.friction.enabled = false;  // the profile alone, through the impact model
+    for (auto& mode : m.resonator.modes) mode.decay_s *= 0.2;  // the landing rings out in 1 s
+    Scene scene;
+    scene.Init(kFs);
+    scene.Prepare(m, OutputParams{}, field.view);
+    ProbeCommand c;
+    c.tip_down = true;
+    c.x_m = 0.01;
+    c.velocity_mps = 0.3;
+    c.normal_force_n = 0.5;
+    c.penetration_m = 60e-6;
+    c.width_mm = 0.2;
+    c.landing_speed_mps = 0.0;
+    std::vector<float> out(2 * 72000);
+    scene.Process(&c, 1, out.data(), 72000);  // 1.5 s: 0.45 m of profile
+    *x_after = scene.probe_state().x_m;
+    double energy = 0.0;  // sound energy in the last half second (the landing has rung out)
+    for (std::size_t i = 2 * 48000; i < out.size(); i += 2) energy += out[i] * out[i];
+    return energy;
+  };
+  double x_bumpy = 0.0, x_flat = 0.0;
+  const double bumpy = sweep(BumpyProfile(), &x_bumpy);
+  const double flat = sweep(std::vector<float>(4000, 25e-6f), &x_flat);
+  CHECK(x_bumpy == Approx(0.01 + 0.45).epsilon(1e-9));
+  CHECK(bumpy > 1e-4);
+  CHECK(flat < 1e-3 * bumpy);
 }
