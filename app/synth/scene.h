@@ -56,7 +56,8 @@ class Scene {
 
   // Renders `frames` frames of 2 interleaved channels (ch 1 sound, ch 2 haptic) into
   // `interleaved_out`. `commands` (sorted by frame_offset; offsets >= frames apply at the last
-  // frame) take effect at the sample they name. Real-time safe.
+  // frame; none is consumed when frames <= 0) take effect at the sample they name, before it is
+  // rendered. Non-finite command fields are ignored or replaced by safe values. Real-time safe.
   void Process(const ProbeCommand* commands, int command_count, float* interleaved_out, int frames);
 
   // Vibrational energy of the resonator (J), cheap (O(modes)).
