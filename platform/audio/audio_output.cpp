@@ -105,8 +105,20 @@ void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
     }
     const bool stalled =
         now_ns - last_progress_ns_ > static_cast<std::int64_t>(config_.stall_timeout_s * 1e9);
+    if (stats.xruns != xruns_reported_ &&
+        (last_xrun_log_ns_ == 0 ||
+         now_ns - last_xrun_log_ns_ >=
+             static_cast<std::int64_t>(config_.xrun_log_interval_s * 1e9))) {
+      // Rate-limited: a struggling machine must not flood the journal from the control loop.
+      board_->logger().Warn(key_, std::to_string(stats.xruns - xruns_reported_) +
+                                      " xruns (buffer under/overflows); total " +
+                                      std::to_string(stats.xruns) + ", slowest callback " +
+                                      std::to_string(stats.max_callback_ns / 1000) + " us");
+      xruns_reported_ = stats.xruns;
+      last_xrun_log_ns_ = now_ns;
+    }
     if (backend_->Healthy() && !stalled) return;
-    backend_->Close();
+    backend_->Abort();
     running_ = false;
     board_->AddFailure(key_);
     backoff_s_ = config_.reopen_backoff_initial_s;

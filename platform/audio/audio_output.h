@@ -36,7 +36,8 @@ struct AudioOutputConfig {
   double suggested_latency_s = 0.0;  // 0: the device's default low latency
   double reopen_backoff_initial_s = 0.25;
   double reopen_backoff_max_s = 8.0;
-  double stall_timeout_s = 1.0;  // no callback for this long while "running" counts as lost
+  double stall_timeout_s = 1.0;       // no callback for this long while "running" counts as lost
+  double xrun_log_interval_s = 10.0;  // at most one "xruns" log line per interval
 };
 
 // Snapshot of the callback counters (read from the control thread).
@@ -78,6 +79,8 @@ class AudioStreamBackend {
   virtual bool Open(const AudioOutputConfig& config, AudioCallbackCore& core,
                     std::string* error) = 0;
   virtual void Close() = 0;
+  // Closes a stream whose device is gone or stuck: drops pending buffers instead of waiting.
+  virtual void Abort() { Close(); }
   // False once the device has gone (stream stopped by an error, device vanished).
   virtual bool Healthy() = 0;
 };
@@ -129,6 +132,7 @@ class SupervisedAudioOutput final : public AudioOutput {
   std::uint64_t last_callbacks_ = 0;
   std::int64_t last_progress_ns_ = 0;
   std::uint64_t xruns_reported_ = 0;
+  std::int64_t last_xrun_log_ns_ = 0;
 };
 
 // PortAudio backend (ALSA). Each Open re-initialises PortAudio so that a replugged USB device is

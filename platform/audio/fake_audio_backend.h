@@ -16,6 +16,7 @@ class FakeAudioStreamBackend final : public AudioStreamBackend {
     bool healthy = true;
     int opens = 0;
     int open_attempts = 0;
+    int aborts = 0;
     AudioCallbackCore* core = nullptr;
     AudioOutputConfig config;
     std::vector<float> played;  // everything the "device" received
@@ -36,16 +37,19 @@ class FakeAudioStreamBackend final : public AudioStreamBackend {
     return true;
   }
   void Close() override { shared_->core = nullptr; }
+  void Abort() override {
+    ++shared_->aborts;
+    Close();
+  }
   bool Healthy() override { return shared_->healthy && shared_->present; }
 
   // The device's audio thread: `blocks` callbacks if a stream is open, nothing otherwise.
-  static void Pump(Shared& shared, int blocks) {
+  static void Pump(Shared& shared, int blocks, bool xrun = false) {
     if (shared.core == nullptr || !shared.present) return;
     std::vector<float> block(
         static_cast<std::size_t>(shared.config.frames_per_buffer * shared.config.channels));
     for (int b = 0; b < blocks; ++b) {
-      shared.core->Run(block.data(), shared.config.frames_per_buffer, shared.config.channels,
-                       false);
+      shared.core->Run(block.data(), shared.config.frames_per_buffer, shared.config.channels, xrun);
       shared.played.insert(shared.played.end(), block.begin(), block.end());
     }
   }

@@ -81,6 +81,11 @@ class PortAudioOutputBackend final : public AudioStreamBackend {
     session_.reset();
   }
 
+  void Abort() override {
+    stream_.Abort();
+    session_.reset();
+  }
+
   bool Healthy() override { return stream_ && Pa_IsStreamActive(stream_.get()) == 1; }
 
  private:

@@ -34,4 +34,11 @@ void PortAudioStream::Reset() {
   stream_ = nullptr;
 }
 
+void PortAudioStream::Abort() {
+  if (stream_ == nullptr) return;
+  Pa_AbortStream(stream_);
+  Pa_CloseStream(stream_);
+  stream_ = nullptr;
+}
+
 }  // namespace sas::platform

@@ -36,6 +36,8 @@ class PortAudioStream {
   explicit operator bool() const { return stream_ != nullptr; }
   // Stops (waiting for pending buffers) and closes.
   void Reset();
+  // Aborts (dropping pending buffers: the device may be gone) and closes.
+  void Abort();
 
  private:
   PaStream* stream_ = nullptr;

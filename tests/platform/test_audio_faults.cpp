@@ -63,6 +63,7 @@ TEST_CASE("audio device lost mid-stroke and back: lost once, silent, reopened wi
   CHECK(status.message.find("running silent") != std::string::npos);
   REQUIRE(logger.Count() == 2);
   CHECK(logger.Recent().back().Text().rfind("warn audio_out: lost:", 0) == 0);
+  CHECK(device.aborts == 1);  // a gone device is aborted, not drained
 
   // While away: the renderer is not called, reopen attempts back off 0.25, 0.5, 1, 2, 2 s and
   // log nothing.
@@ -98,6 +99,33 @@ TEST_CASE("audio device lost mid-stroke and back: lost once, silent, reopened wi
   CHECK(logger.Recent().back().Text().find("reopened") != std::string::npos);
   FakeAudioStreamBackend::Pump(device, 5);
   CHECK(renderer.rendered() == rendered_before + 5 * config.frames_per_buffer);
+}
+
+TEST_CASE("xruns are counted and logged at most once per interval", "[platform]") {
+  FakeAudioStreamBackend::Shared device;
+  RampRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  AudioOutputConfig config;
+  config.xrun_log_interval_s = 10.0;
+  SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer, config,
+                               board);
+  REQUIRE(output.Start());
+  const auto lines0 = logger.Count();
+  std::int64_t now = 0;
+  for (int second = 0; second < 25; ++second) {
+    FakeAudioStreamBackend::Pump(device, 2, true);  // two xruns every second
+    FakeAudioStreamBackend::Pump(device, 10);
+    output.Poll(now += 1000 * kMs);
+  }
+  CHECK(output.Stats().xruns == 50);
+  CHECK(board.Get("audio_out").events == 50);
+  // Lines at 1 s, 11 s, 21 s.
+  REQUIRE(logger.Count() == lines0 + 3);
+  CHECK(logger.Recent()[1].Text().rfind("warn audio_out: 2 xruns", 0) == 0);
+  CHECK(logger.Recent()[2].Text().rfind("warn audio_out: 20 xruns", 0) == 0);
+  CHECK(output.Running());
 }
 
 TEST_CASE("a stalled device (no callbacks) counts as lost", "[platform]") {
