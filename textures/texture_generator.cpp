@@ -518,11 +518,9 @@ TextureOut CrackedGround(const Canvas& c) {
   cv::Mat3f albedo(c.height, c.width);
   const cv::Mat1f tint = Fbm(rng, c, 70.0 * c.scale, 3);
   const cv::Mat1f speck = BlurredNoise(rng, c, 0.9 * c.scale);
-  const cv::Mat1f sand = BlurredNoise(rng, c, 2.2 * c.scale);  // sand and silt grains
   for (int y = 0; y < c.height; ++y) {
     for (int x = 0; x < c.width; ++x) {
-      const double v =
-          (1.0 + 0.09 * tint(y, x)) * (1.0 + 0.018 * speck(y, x)) * (1.0 + 0.05 * sand(y, x));
+      const double v = (1.0 + 0.09 * tint(y, x)) * (1.0 + 0.018 * speck(y, x));
       const double f = floor_mask(y, x);
       albedo(y, x) = cv::Vec3f(static_cast<float>((0.42 - 0.22 * f) * v),
                                static_cast<float>((0.56 - 0.30 * f) * v),
