@@ -343,7 +343,9 @@ int ChooseContactOversample(const ImpactParams& impact, double probe_mass_kg,
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
                                         int oversample, double onset_phase) {
-  (void)scheme;  // only kDiscreteGradient exists so far (IsContactSchemeImplemented)
+  // Only kDiscreteGradient exists so far; the result says which scheme actually ran.
+  const ContactScheme used =
+      IsContactSchemeImplemented(scheme) ? scheme : ContactScheme::kDiscreteGradient;
   ImpactParams params;
   params.enabled = true;
   params.stiffness = k;
@@ -365,6 +367,7 @@ ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, dou
 
   ImpactRunResult result;
   result.oversample = config.substeps;
+  result.scheme_used = used;
   double time = 0.0, touch_time = -1.0;
   bool in_contact = false;
   // Within a step the force is constant, so the scheme's own trajectory is a parabola; its peak

@@ -134,7 +134,8 @@ struct ImpactRunResult {
   double contact_time_s = 0.0;       // first touch to separation (crossings interpolated)
   double samples_per_contact = 0.0;  // contact_time_s · fs
   int oversample = 1;                // sub-steps per sample used
-  bool separated = false;            // false if the probe had not left after 10 s
+  ContactScheme scheme_used = ContactScheme::kDiscreteGradient;  // see IsContactSchemeImplemented
+  bool separated = false;  // false if the probe had not left after 10 s
 };
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
