@@ -158,12 +158,17 @@ bool Mcp2221SwitchInput::Start(std::string* error) {
   if (!transport_ && !Connect(error)) return false;
   ever_connected_ = true;
   board_->Set("switches", DeviceState::kOk, "MCP2221A adapter, GP0-3 polled", "mcp2221");
+  StartWaiting();
+  return true;
+}
+
+void Mcp2221SwitchInput::StartWaiting() {
+  if (thread_.joinable()) return;
   {
     std::lock_guard lock(mutex_);
     stop_ = false;
   }
   thread_ = std::thread([this] { Run(); });
-  return true;
 }
 
 void Mcp2221SwitchInput::Stop() {

@@ -81,6 +81,9 @@ class Mcp2221SwitchInput final : public SwitchInput {
   const char* Name() const override { return "mcp2221"; }
   // Opens the adapter once; false (error set) when it is absent. Then starts the poll thread.
   bool Start(std::string* error) override;
+  // Starts the poll thread without an adapter: it connects whenever one is plugged in (status
+  // "ok" then). For backend = "mcp2221" when the adapter enumerates after the kiosk started.
+  void StartWaiting();
   void Stop() override;
 
   // One poll step at `now_ns` (what the thread does every poll interval); public so tests can

@@ -2,7 +2,8 @@
 // Chooses the token-switch backend from configuration, with the keyboard as the fallback that is
 // always there (keys 1-4 and R also work next to hardware switches, for staff and tests).
 //   backend = "gpio"     libgpiod lines; chip absent -> keyboard, one warning, status "missing"
-//   backend = "mcp2221"  USB adapter;    adapter absent -> keyboard, one warning, status "missing"
+//   backend = "mcp2221"  USB adapter;    adapter absent -> keyboard, one warning, status "missing",
+//                        and the adapter is used as soon as it is plugged in (status "ok")
 //   backend = "auto"     gpio if the chip opens, else the adapter if present, else keyboard
 //   backend = "keyboard" keys only
 // Status key "switches".

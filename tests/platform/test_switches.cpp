@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <thread>
@@ -211,8 +212,8 @@ Mcp2221Report GetGpioResponse(std::array<int, 4> values, std::array<int, 4> dire
 }
 
 struct FakeMcp2221 {
-  bool present = true;
-  bool configured = false;                   // SET SRAM received since last plug-in
+  std::atomic<bool> present{true};  // flipped by the test while a poll thread may be reading
+  bool configured = false;          // SET SRAM received since last plug-in
   std::array<int, 4> levels = {1, 1, 1, 1};  // pulled up: no token
   std::vector<std::uint8_t> commands;
 };
@@ -435,4 +436,37 @@ TEST_CASE("auto backend uses the MCP2221A adapter when there is no GPIO chip", "
   CHECK(std::string(inputs.ActiveBackend()) == "mcp2221");
   CHECK(board.Get("switches").state == DeviceState::kOk);
   inputs.hardware->Stop();  // the poll thread read the fake; stop it before `dev` goes
+}
+
+TEST_CASE("MCP2221A asked for but absent at start: keys meanwhile, adapter taken when plugged in",
+          "[platform]") {
+  FakeMcp2221 dev;
+  dev.present = false;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  SwitchesConfig config;
+  config.backend = "mcp2221";
+  config.mcp2221.reopen_interval_ms = 5;
+  config.mcp2221.poll_interval_ms = 2;
+  auto inputs = OpenSwitchInputs(config, board, nullptr, FakeOpener(dev));
+  auto status = board.Get("switches");
+  CHECK(status.state == DeviceState::kMissing);
+  CHECK(status.message.find("until it is plugged in") != std::string::npos);
+  REQUIRE(logger.Count() == 1);
+  inputs.keyboard->OnKey('1', true, 5);
+  SwitchEvent e;
+  REQUIRE(inputs.Pop(e));
+  CHECK(e.input == 0);
+
+  dev.present = true;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (board.Get("switches").state != DeviceState::kOk &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  status = board.Get("switches");
+  CHECK(status.state == DeviceState::kOk);
+  CHECK(status.backend == "mcp2221");
+  CHECK(logger.Count() == 2);
+  inputs.hardware->Stop();
 }
