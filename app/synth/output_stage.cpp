@@ -46,9 +46,10 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
   sections_[0] = HighPass(low, std::numbers::sqrt2 / 2.0, sample_rate_hz);
-  // 8th-order Butterworth: Q_k = 1 / (2 cos((2k - 1) π / 16)), k = 1..4.
-  for (int k = 1; k <= 4; ++k) {
-    const double q = 1.0 / (2.0 * std::cos((2.0 * k - 1.0) * std::numbers::pi / 16.0));
+  // 16th-order Butterworth: Q_k = 1 / (2 cos((2k - 1) π / 32)), k = 1..8. Steep enough that the
+  // transducer gets (almost) nothing above 1 kHz even from a flat spectrum.
+  for (int k = 1; k <= 8; ++k) {
+    const double q = 1.0 / (2.0 * std::cos((2.0 * k - 1.0) * std::numbers::pi / 32.0));
     sections_[static_cast<std::size_t>(k)] = LowPass(high, q, sample_rate_hz);
   }
   Reset();

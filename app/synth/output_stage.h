@@ -3,8 +3,8 @@
 // transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
 // the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
 //   ch 1: NaN/Inf -> 0, × sound_gain, soft limiter
-//   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 8th-order
-//         Butterworth low-pass, RBJ biquads, so nothing much above 1 kHz reaches the transducer),
+//   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 16th-order
+//         Butterworth low-pass, RBJ biquads: white noise keeps < -40 dB of its energy above 1 kHz),
 //         × haptic_gain, soft limiter; skipped (zeros) when haptic_enabled is false.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
@@ -57,7 +57,7 @@ class OutputStage {
   double FilterActivity() const;
 
  private:
-  static constexpr int kSections = 5;  // 1 high-pass + 4 low-pass biquads
+  static constexpr int kSections = 9;  // 1 high-pass + 8 low-pass biquads
   std::array<Biquad, kSections> sections_{};
   double sound_gain_ = 1.0;
   double haptic_gain_ = 1.0;
