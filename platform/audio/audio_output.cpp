@@ -123,11 +123,13 @@ void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
     board_->AddFailure(key_);
     backoff_s_ = config_.reopen_backoff_initial_s;
     next_retry_ns_ = now_ns + static_cast<std::int64_t>(backoff_s_ * 1e9);
-    board_->Set(key_, DeviceState::kLost,
-                std::string(stalled ? "no audio callbacks for " : "stream stopped: ") +
-                    (stalled ? std::to_string(config_.stall_timeout_s) + " s" : "device gone") +
-                    "; running silent, reopening with back-off",
-                backend_->Name());
+    board_->Set(
+        key_, DeviceState::kLost,
+        std::string(stalled ? "no audio callbacks for " : "stream stopped: ") +
+            (stalled ? std::to_string(static_cast<int>(config_.stall_timeout_s * 1000)) + " ms"
+                     : "device gone") +
+            "; running silent, reopening with back-off",
+        backend_->Name());
     return;
   }
   if (now_ns < next_retry_ns_) return;

@@ -79,7 +79,7 @@ class LibinputPenSource final : public PenSource {
     udev_.reset();
   }
 
-  const std::string& tablet_name() const { return tablet_name_; }
+  std::string DeviceName() const override { return tablet_name_; }
 
  private:
   bool Fail(std::string* error, const std::string& why) {
@@ -191,8 +191,8 @@ std::unique_ptr<PenSource> OpenPen(const PenConfig& config, DeviceStatusBoard& b
               source->Name());
     return nullptr;
   }
-  board.Set("pen", DeviceState::kOk, std::string("pen tablet via ") + source->Name(),
-            source->Name());
+  board.Set("pen", DeviceState::kOk,
+            "pen tablet '" + source->DeviceName() + "' via " + source->Name(), source->Name());
   return source;
 }
 

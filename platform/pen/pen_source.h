@@ -49,6 +49,8 @@ class PenSource {
  public:
   virtual ~PenSource() = default;
   virtual const char* Name() const = 0;
+  // The tablet's own name once started (for the status line).
+  virtual std::string DeviceName() const { return Name(); }
   // False with `error` when there is no tablet (never throws).
   virtual bool Start(std::string* error) = 0;
   virtual void Stop() = 0;
