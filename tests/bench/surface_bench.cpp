@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -19,12 +20,22 @@ int main(int argc, char** argv) {
                                           "cracked_ground"};
   std::vector<std::string> paths;
   for (const auto& name : names) paths.push_back(root + "/" + name + "/texture.toml");
-  const auto start = std::chrono::steady_clock::now();
-  const auto textures = sas::surface::LoadTextures(paths);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("load 4 textures + derive height fields (parallel): %.3f s (target < 1 s)\n",
-              seconds);
+  // Best of three runs: the figure is the loader's cost, not whatever else the machine is doing.
+  double seconds = 1e9, cpu_seconds = 1e9;
+  std::vector<sas::surface::LoadedTexture> textures;
+  for (int run = 0; run < 3; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    textures = sas::surface::LoadTextures(paths);
+    cpu_seconds =
+        std::min(cpu_seconds, static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+    seconds = std::min(
+        seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::printf(
+      "load 4 textures + derive height fields (parallel, best of 3): %.3f s wall, %.3f s CPU "
+      "(target < 1 s)\n",
+      seconds, cpu_seconds);
   for (const auto& t : textures) {
     std::printf("  %-15s %d x %d, max height %.3f mm\n", t.file.name.c_str(), t.field->width(),
                 t.field->height(),
