@@ -253,3 +253,18 @@ TEST_CASE("a directory with one bad file loads nothing and the library keeps its
   CHECK(library.Find("a_first")->params.impact.stiffness == 3e7);
   CHECK(library.Find("c_fine") == nullptr);
 }
+
+TEST_CASE("modes may also be written as [[modes]] tables, with the same checks", "[kiosk]") {
+  std::string text = kValid;
+  const auto begin = text.find("modes = [");
+  const auto end = text.find("[probe]");
+  text.erase(begin, end - begin);
+  text += "[[modes]]\nfrequency_hz = 500\ndecay_s = 0.2\nmass_kg = 0.1\ngain = 0.5\n";
+  const Material material = Parse(text);
+  REQUIRE(material.params.resonator.mode_count == 1);
+  CHECK(material.params.resonator.modes[0].frequency_hz == 500.0);
+  // A missing key in such a table is reported at its [[modes]] header (line 22 here).
+  const auto at = text.find("gain = 0.5\n");
+  text.erase(at, std::string("gain = 0.5\n").size());
+  CHECK_THROWS_WITH(Parse(text), Catch::Contains("m.toml:22: modes[0].gain: missing key"));
+}

@@ -8,10 +8,15 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "kiosk/render_command.h"
+#include "sas/version.h"
 #include "support/temp_dir.h"
 
 using sas::kiosk::FindMaterial;
@@ -372,4 +377,43 @@ TEST_CASE("a gesture CSV file drives the render", "[render]") {
   const Wav wav = ReadWav(dir.file("g.wav"));
   CHECK(static_cast<double>(wav.channel[0].size()) / 48000.0 == Approx(0.4).margin(1e-3));
   CHECK(PeakBetween(wav.channel[0], 48000.0, 0.05, 0.3) > 1e-4);
+}
+
+TEST_CASE(
+    "materials are searched in --materials-dir, then $SAS_DATA_DIR, then the source tree, "
+    "then the install prefix",
+    "[render]") {
+  sas::test::TempDir data;
+  std::filesystem::create_directories(data.path() / "materials");
+  const char* previous = std::getenv("SAS_DATA_DIR");
+  const std::string saved = previous != nullptr ? previous : "";
+  setenv("SAS_DATA_DIR", data.path().c_str(), 1);
+
+  const auto dirs = MaterialSearchDirs("/cli/dir");
+  REQUIRE(dirs.size() == 4);
+  CHECK(dirs[0] == "/cli/dir");
+  CHECK(dirs[1] == (data.path() / "materials").string());
+  CHECK(dirs[2] == std::string(sas::kSourceDir) + "/textures/materials");
+  CHECK(dirs[3] == std::string(sas::kInstallPrefix) + "/share/sketch-a-scratch/materials");
+
+  // A material only $SAS_DATA_DIR has is found there; one it shadows comes from there too.
+  const std::string wood_text = [] {
+    std::ifstream file(std::string(sas::kSourceDir) + "/textures/materials/wood.toml");
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+  }();
+  data.Write("materials/oak.toml", wood_text);
+  data.Write("materials/glass.toml", "description = \"shadow\"\n");
+  CHECK(FindMaterial("oak", MaterialSearchDirs("")).name == "oak");
+  CHECK_THROWS_WITH(FindMaterial("glass", MaterialSearchDirs("")),
+                    Catch::Contains(data.file("materials/glass.toml")));
+  // Names are names, not paths.
+  CHECK_THROWS_AS(FindMaterial("../materials/wood", MaterialSearchDirs("")), RenderError);
+
+  if (previous != nullptr) {
+    setenv("SAS_DATA_DIR", saved.c_str(), 1);
+  } else {
+    unsetenv("SAS_DATA_DIR");
+  }
 }
