@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "surface/image_surface.h"
+
 namespace sas::surface {
 namespace {
 
@@ -98,6 +100,20 @@ GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOption
     }
   }
   return image;
+}
+
+HeightField SoundToHeightField(const AudioClip& clip, const SoundImageOptions& options,
+                               double relief_mm, double pixel_pitch_mm) {
+  if (clip.samples.empty() || clip.silent) {
+    throw std::invalid_argument("SoundToHeightField: the recording is empty or silent");
+  }
+  SoundImageOptions o = options;
+  o.sample_rate_hz = clip.sample_rate_hz;
+  ReliefOptions relief;
+  relief.source = ReliefSource::kLuminance;
+  relief.relief_mm = relief_mm;
+  relief.pixel_pitch_mm = pixel_pitch_mm;
+  return SurfaceFromImage(SoundToImage(clip.samples, o), relief).field;
 }
 
 HeightField SoundToProfile(const AudioClip& clip, const SoundProfileOptions& o) {

@@ -46,6 +46,13 @@ struct SoundImageOptions {
 // Throws std::invalid_argument for options out of range or an empty recording.
 GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOptions& options = {});
 
+// The kiosk's voice path in one call: recording -> sound image -> height field, reading the
+// image's luminance as height (ReliefSource::kLuminance, see image_surface.h) with `relief_mm` for
+// white and the display's pixel pitch. Throws std::invalid_argument for an empty or silent clip
+// (a silent recording would be a featureless plateau: the caller should ask the visitor again).
+HeightField SoundToHeightField(const AudioClip& clip, const SoundImageOptions& options,
+                               double relief_mm, double pixel_pitch_mm);
+
 enum class ProfileShape { kEnvelope, kWaveform };
 
 struct SoundProfileOptions {

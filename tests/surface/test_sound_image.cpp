@@ -221,3 +221,29 @@ TEST_CASE("bad CSV scans are refused with file and line", "[surface]") {
   CHECK_THROWS_WITH(VibrationProfileFromFile(dir.file("absent.csv")),
                     Catch::Contains("absent.csv"));
 }
+
+TEST_CASE("a voice recording becomes a height field whose rows are the recording's luminance rows",
+          "[surface]") {
+  AudioClip clip;
+  clip.sample_rate_hz = 48000.0;
+  clip.samples.resize(48000 * 2);
+  for (std::size_t i = 0; i < clip.samples.size(); ++i) {
+    clip.samples[i] =
+        static_cast<float>(0.3 * std::sin(2.0 * std::numbers::pi * static_cast<double>(i) / 96.0));
+  }
+  clip.peak = 0.3f;
+  SoundImageOptions options;
+  options.samples_per_row = 1920;
+  options.row_length_px = 1920;
+  options.row_height_px = 4;
+  const auto field = SoundToHeightField(clip, options, 0.5, 0.1534);
+  CHECK(field.width() == 1920);
+  CHECK(field.height() == 50 * 4);  // 2 s of 40 ms rows, each 4 px high
+  CHECK(field.pitch_m() == Approx(0.1534e-3));
+  // Heights span 0..relief: luminance 0.5 +- 0.5 sin.
+  const auto [lo, hi] = std::minmax_element(field.heights_m().begin(), field.heights_m().end());
+  CHECK(*hi == Approx(0.5e-3).epsilon(1e-3));
+  CHECK(*lo == Approx(0.0).margin(1e-6));
+  clip.silent = true;
+  CHECK_THROWS_AS(SoundToHeightField(clip, options, 0.5, 0.1534), std::invalid_argument);
+}
