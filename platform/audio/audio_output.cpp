@@ -48,12 +48,12 @@ SupervisedAudioOutput::~SupervisedAudioOutput() {
   Stop();
 }
 
-bool SupervisedAudioOutput::TryOpen(std::string* error) {
+bool SupervisedAudioOutput::TryOpen(std::int64_t now_ns, std::string* error) {
   if (!backend_->Open(config_, core_, error)) return false;
   running_ = true;
   last_callbacks_ = core_.Stats().callbacks;
-  last_progress_ns_ = MonotonicNowNs();
-  backoff_s_ = 0.0;
+  last_progress_ns_ = now_ns;
+  opened_at_ns_ = now_ns;
   return true;
 }
 
@@ -70,7 +70,8 @@ std::string Describe(const AudioOutputConfig& c, const char* backend) {
 bool SupervisedAudioOutput::Start() {
   stopped_ = false;
   std::string error;
-  if (TryOpen(&error)) {
+  const std::int64_t now_ns = MonotonicNowNs();
+  if (TryOpen(now_ns, &error)) {
     ever_opened_ = true;
     board_->Set(key_, DeviceState::kOk, "playing on " + Describe(config_, backend_->Name()),
                 backend_->Name());
@@ -79,7 +80,7 @@ bool SupervisedAudioOutput::Start() {
   board_->AddFailure(key_);
   board_->Set(key_, DeviceState::kMissing, error + "; running silent, retrying", backend_->Name());
   backoff_s_ = config_.reopen_backoff_initial_s;
-  next_retry_ns_ = MonotonicNowNs() + static_cast<std::int64_t>(backoff_s_ * 1e9);
+  next_retry_ns_ = now_ns + static_cast<std::int64_t>(backoff_s_ * 1e9);
   return false;
 }
 
@@ -121,7 +122,13 @@ void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
     backend_->Abort();
     running_ = false;
     board_->AddFailure(key_);
-    backoff_s_ = config_.reopen_backoff_initial_s;
+    // A device that opens and dies again at once (flapping) keeps its growing back-off; one that
+    // played for reopen_stable_s starts over from the initial delay.
+    const bool flapping =
+        now_ns - opened_at_ns_ < static_cast<std::int64_t>(config_.reopen_stable_s * 1e9);
+    backoff_s_ = (flapping && backoff_s_ > 0.0)
+                     ? std::min(config_.reopen_backoff_max_s, backoff_s_ * 2.0)
+                     : config_.reopen_backoff_initial_s;
     next_retry_ns_ = now_ns + static_cast<std::int64_t>(backoff_s_ * 1e9);
     board_->Set(
         key_, DeviceState::kLost,
@@ -134,7 +141,7 @@ void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
   }
   if (now_ns < next_retry_ns_) return;
   std::string error;
-  if (TryOpen(&error)) {
+  if (TryOpen(now_ns, &error)) {
     if (ever_opened_) board_->AddReconnect(key_);
     board_->Set(key_, DeviceState::kOk,
                 std::string(ever_opened_ ? "reopened " : "playing on ") +

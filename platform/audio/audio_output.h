@@ -36,6 +36,7 @@ struct AudioOutputConfig {
   double suggested_latency_s = 0.0;  // 0: the device's default low latency
   double reopen_backoff_initial_s = 0.25;
   double reopen_backoff_max_s = 8.0;
+  double reopen_stable_s = 5.0;       // a reopened stream must play this long to reset the back-off
   double stall_timeout_s = 1.0;       // no callback for this long while "running" counts as lost
   double xrun_log_interval_s = 10.0;  // at most one "xruns" log line per interval
 };
@@ -92,7 +93,8 @@ class AudioOutput {
   // the available devices); Poll() keeps retrying, the kiosk runs silent meanwhile.
   virtual bool Start() = 0;
   virtual void Stop() = 0;
-  // Control-thread supervision: detects a lost device and reopens with back-off.
+  // Control-thread supervision: detects a lost device and reopens with back-off. `now_ns` is
+  // CLOCK_MONOTONIC (MonotonicNowNs()); tests advance it by hand from there.
   virtual void Poll(std::int64_t now_ns) = 0;
   virtual bool Running() const = 0;
   virtual AudioCallbackStats Stats() const = 0;
@@ -117,7 +119,7 @@ class SupervisedAudioOutput final : public AudioOutput {
   double NextRetryInS(std::int64_t now_ns) const;
 
  private:
-  bool TryOpen(std::string* error);
+  bool TryOpen(std::int64_t now_ns, std::string* error);
 
   std::unique_ptr<AudioStreamBackend> backend_;
   AudioCallbackCore core_;
@@ -131,6 +133,7 @@ class SupervisedAudioOutput final : public AudioOutput {
   std::int64_t next_retry_ns_ = 0;
   std::uint64_t last_callbacks_ = 0;
   std::int64_t last_progress_ns_ = 0;
+  std::int64_t opened_at_ns_ = 0;
   std::uint64_t xruns_reported_ = 0;
   std::int64_t last_xrun_log_ns_ = 0;
 };

@@ -7,6 +7,7 @@
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/fake_audio_backend.h"
+#include "platform/common/clock.h"
 
 using namespace sas::platform;
 
@@ -49,7 +50,7 @@ TEST_CASE("audio device lost mid-stroke and back: lost once, silent, reopened wi
   CHECK(board.Get("audio_out").state == DeviceState::kOk);
   CHECK(logger.Count() == 1);  // "ok: playing on ..."
 
-  std::int64_t now = 0;
+  std::int64_t now = MonotonicNowNs();
   FakeAudioStreamBackend::Pump(device, 10);  // mid-stroke
   output.Poll(now);
   CHECK(output.Running());
@@ -101,6 +102,34 @@ TEST_CASE("audio device lost mid-stroke and back: lost once, silent, reopened wi
   CHECK(renderer.rendered() == rendered_before + 5 * config.frames_per_buffer);
 }
 
+TEST_CASE("a flapping device (opens, dies at once) is retried with a growing back-off",
+          "[platform]") {
+  FakeAudioStreamBackend::Shared device;
+  RampRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  AudioOutputConfig config;
+  config.reopen_backoff_initial_s = 0.25;
+  config.reopen_backoff_max_s = 8.0;
+  SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer, config,
+                               board);
+  REQUIRE(output.Start());
+  std::int64_t now = MonotonicNowNs();
+  std::vector<std::int64_t> opens;
+  for (int step = 0; step < 6000; ++step) {  // 60 s of 10 ms control ticks
+    device.healthy = false;                  // dies right after every open
+    const int before = device.opens;
+    output.Poll(now += 10 * kMs);
+    if (device.opens != before) opens.push_back(now);
+  }
+  REQUIRE(opens.size() >= 5);
+  // 0.25 + 0.5 + 1 + 2 + 4 + 8 + 8 ...: about ten reopen cycles a minute, not thousands.
+  CHECK(opens.size() <= 12);
+  CHECK(static_cast<double>(opens.back() - opens[opens.size() - 2]) * 1e-9 ==
+        Approx(8.0).margin(0.03));
+}
+
 TEST_CASE("xruns are counted and logged at most once per interval", "[platform]") {
   FakeAudioStreamBackend::Shared device;
   RampRenderer renderer;
@@ -113,7 +142,7 @@ TEST_CASE("xruns are counted and logged at most once per interval", "[platform]"
                                board);
   REQUIRE(output.Start());
   const auto lines0 = logger.Count();
-  std::int64_t now = 0;
+  std::int64_t now = MonotonicNowNs();
   for (int second = 0; second < 25; ++second) {
     FakeAudioStreamBackend::Pump(device, 2, true);  // two xruns every second
     FakeAudioStreamBackend::Pump(device, 10);
@@ -139,7 +168,7 @@ TEST_CASE("a stalled device (no callbacks) counts as lost", "[platform]") {
   SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer, config,
                                board);
   REQUIRE(output.Start());
-  const std::int64_t t0 = 1'000'000 * kMs;
+  const std::int64_t t0 = MonotonicNowNs();
   output.Poll(t0);
   FakeAudioStreamBackend::Pump(device, 1);
   output.Poll(t0 + 400 * kMs);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <thread>
 
 #include "alsa_file_config.h"
@@ -156,4 +157,102 @@ TEST_CASE("an unknown output device name fails with a line listing the available
   CHECK(lines[0].level == sas::platform::LogLevel::kWarn);
   CHECK(lines[0].Text().rfind("warn audio_out: missing: output device 'no_such_card' not found",
                               0) == 0);
+}
+
+namespace {
+
+// A ramp renderer: every sample value tells which frame it was, so a device's recording shows
+// whether playback resumed as one contiguous stream.
+class CountingRenderer final : public sas::platform::AudioRenderer {
+ public:
+  void Render(float* out, int frames, int channels) noexcept override {
+    for (int i = 0; i < frames; ++i) {
+      n_ = n_ % 100000 + 1;
+      for (int c = 0; c < channels; ++c) out[i * channels + c] = static_cast<float>(n_) * 1e-5f;
+    }
+  }
+
+ private:
+  int n_ = 0;
+};
+
+}  // namespace
+
+TEST_CASE("real PortAudio output: device fails mid-stream, disappears, returns and is reopened",
+          "[platform]") {
+  sas::test::TempDir dir;
+  const std::string out = dir.file("out.raw");
+  int generation = 0;
+  // ALSA re-reads its configuration when the file list changes: each phase gets a new file.
+  auto use_config = [&](const std::string& text) {
+    const auto path = dir.Write("asound" + std::to_string(++generation) + ".conf",
+                                "pcm.null { type null }\n" + text);
+    setenv("ALSA_CONFIG_PATH", path.c_str(), 1);
+  };
+  // Debian's PortAudio 19.6 aborts in Pa_Initialize when no `default` PCM exists: always define
+  // one.
+  const std::string default_pcm = "pcm.!default { type plug slave.pcm \"null\" }\n";
+  // Phase 1: the device accepts the stream, then every write fails (as a yanked USB card does).
+  use_config("pcm.kiosk_out { type file slave.pcm \"null\" file \"/dev/full\" format \"raw\" }\n" +
+             default_pcm);
+  CountingRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  AudioOutputConfig config;
+  config.device = "kiosk_out";
+  config.reopen_backoff_initial_s = 0.01;
+  config.reopen_backoff_max_s = 0.02;
+  auto output = sas::platform::MakePortAudioOutput(renderer, config, board);
+  REQUIRE(output->Start());
+  REQUIRE(WaitFor([&] {
+    output->Poll(sas::platform::MonotonicNowNs());
+    return !output->Running();
+  }));
+  CHECK(board.Get("audio_out").state == DeviceState::kLost);
+  CHECK(logger.Count() == 2);  // ok, lost
+
+  // Phase 2: the device is gone; reopen attempts fail quietly (no new log lines).
+  use_config(default_pcm);
+  const auto t_end = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+  while (std::chrono::steady_clock::now() < t_end) {
+    output->Poll(sas::platform::MonotonicNowNs());
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  CHECK_FALSE(output->Running());
+  CHECK(board.Get("audio_out").failures >= 3);
+  CHECK(logger.Count() == 2);
+
+  // Phase 3: the device is back.
+  use_config("pcm.kiosk_out { type file slave.pcm \"null\" file \"" + out +
+             "\" format \"raw\" }\n" + default_pcm);
+  REQUIRE(WaitFor([&] {
+    output->Poll(sas::platform::MonotonicNowNs());
+    return output->Running();
+  }));
+  const auto status = board.Get("audio_out");
+  CHECK(status.state == DeviceState::kOk);
+  CHECK(status.reconnects == 1);
+  CHECK(logger.Count() == 3);
+  const auto frames_at_reopen = output->Stats().frames;
+  REQUIRE(WaitFor([&] { return output->Stats().frames > frames_at_reopen + 48000; }));
+  output->Stop();
+  unsetenv("ALSA_CONFIG_PATH");
+
+  // The returned device received the renderer's stream, contiguous (steps of one frame).
+  std::ifstream f(out, std::ios::binary | std::ios::ate);
+  const auto bytes = static_cast<std::size_t>(f.tellg());
+  std::vector<float> played(bytes / sizeof(float));
+  f.seekg(0);
+  f.read(reinterpret_cast<char*>(played.data()), static_cast<std::streamsize>(bytes));
+  std::size_t lead = 0;
+  while (lead < played.size() && played[lead] == 0.0f) ++lead;
+  REQUIRE(played.size() - lead > 2 * 48000);
+  std::size_t breaks = 0;
+  for (std::size_t i = lead + 2; i + 1 < played.size(); i += 2) {
+    const long a = std::lround(played[i - 2] * 1e5f);
+    const long b = std::lround(played[i] * 1e5f);
+    breaks += (b != a + 1 && !(a == 100000 && b == 1)) || played[i + 1] != played[i];
+  }
+  CHECK(breaks == 0);
 }
