@@ -297,7 +297,12 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
   double force = 0.0;
   double du = in.free_du;
   const bool coupled = in.impact_on && friction_on && in.coupling > 0.0;
-  for (int iteration = 0; iteration < 16; ++iteration) {
+  // Block Gauss–Seidel on the friction force f -> Φ(f) (normal solve, then friction solve),
+  // accelerated by secant steps on the fixed-point residual Φ(f) - f for the first iterations
+  // (strong coupling: light modes, soft bristles), plain Gauss–Seidel after that.
+  double f_prev = 0.0, g_prev = 0.0;
+  constexpr int kMaxIterations = 24;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     if (in.impact_on) {
       const double d =
           SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h);
@@ -308,10 +313,23 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
                        in.friction_normal_n, in.noise_n);
     const BristleStep b = AdvanceBristle(friction, in.z0, du, in.h, in.friction_normal_n);
     const double f_new = FrictionStepForce(friction, in.z0, b, du, in.h, in.noise_n);
-    const bool converged = std::fabs(f_new - f) <= 1e-13 * (std::fabs(f_new) + 1e-9);
-    f = f_new;
+    const double g = f_new - f;
+    const bool converged = std::fabs(g) <= 1e-13 * (std::fabs(f_new) + 1e-9);
     out.z1 = b.z1;
-    if (!coupled || converged) break;
+    // Always leave with the f computed from the last normal force, so that f, z1 and F belong
+    // to one consistent step.
+    if (!coupled || converged || iteration + 1 == kMaxIterations) {
+      f = f_new;
+      break;
+    }
+    double next = f_new;
+    if (iteration > 0 && iteration < 12 && g != g_prev) {
+      const double secant = f - g * (f - f_prev) / (g - g_prev);
+      if (std::isfinite(secant)) next = secant;
+    }
+    f_prev = f;
+    g_prev = g;
+    f = next;
   }
   out.normal_n = force;
   out.friction_n = f;
