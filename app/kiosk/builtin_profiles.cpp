@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "surface/image_loader.h"
+#include "surface/image_surface.h"
+#include "surface/texture_file.h"
 
 namespace sas::kiosk {
 namespace {
@@ -178,22 +180,43 @@ std::optional<surface::HeightField> MakeBuiltinProfile(const std::string& name) 
   return std::nullopt;
 }
 
+namespace {
+
+bool IsTextureFile(const std::string& path) {
+  return path.size() > 5 && path.compare(path.size() - 5, 5, ".toml") == 0;
+}
+
+std::string BuiltinList() {
+  std::string names;
+  for (const auto& n : BuiltinProfileNames()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
+}  // namespace
+
 surface::HeightField LoadProfile(const std::string& name_or_path) {
   if (auto builtin = MakeBuiltinProfile(name_or_path)) return std::move(*builtin);
-  surface::GrayImage image;
   try {
-    image = surface::LoadGrayImage(name_or_path);
-  } catch (const surface::LoadError& error) {
-    std::string names;
-    for (const auto& n : BuiltinProfileNames()) names += (names.empty() ? "" : ", ") + n;
-    throw ProfileError(std::string(error.what()) +
-                       " (a profile is a picture file or one of: " + names + ")");
+    if (IsTextureFile(name_or_path)) {
+      const surface::TextureFile texture = surface::LoadTextureFile(name_or_path);
+      return surface::LoadHeightMapPng(texture.height_map_path, texture.height_scale_mm,
+                                       surface::DisplayGeometry{}.pixel_pitch_mm());
+    }
+    return surface::HeightFieldFromImageFile(name_or_path);
+  } catch (const std::exception& error) {
+    // LoadError from the loaders, invalid_argument from the pipeline: all name the file.
+    throw ProfileError(std::string(error.what()) + " (a profile is a built-in (" + BuiltinList() +
+                       "), a texture.toml or a picture file)");
   }
-  std::vector<float> heights(image.luminance.size());
-  std::transform(image.luminance.begin(), image.luminance.end(), heights.begin(), [](float l) {
-    return static_cast<float>(std::clamp(l, 0.0f, 1.0f) * kImageReliefM);
-  });
-  return surface::HeightField(image.width, image.height, kProfilePitchM, std::move(heights));
+}
+
+std::string ProfileMaterial(const std::string& name_or_path) {
+  if (!IsTextureFile(name_or_path)) return "";
+  try {
+    return surface::LoadTextureFile(name_or_path).material;
+  } catch (const std::exception& error) {
+    throw ProfileError(error.what());
+  }
 }
 
 double ReliefM(const surface::HeightField& field) {

@@ -10,9 +10,10 @@
 //   flat     all zero (the material alone)
 // "Seeded" means a fixed seed and our own integer hashing: the same field on every machine.
 //
-// A picture (any format surface::LoadGrayImage reads) maps luminance linearly to height: white =
-// kImageReliefM, black = 0, one pixel per 0.153 mm. This is the simple placeholder; the surface
-// layer's edge-based image pipeline (paper §2) can replace LoadProfile's image branch.
+// Anything else is a file: a kiosk texture description (textures/<name>/texture.toml) gives its
+// true height map; a picture (PNG, JPEG, BMP) goes through the surface layer's picture -> height
+// field pipeline (paper §2: regions of maximal gray-level change become ridges, even regions stay
+// flat; surface/image_surface.h, default options: 0.5 mm relief, panel pitch 0.153 mm).
 
 #include <optional>
 #include <stdexcept>
@@ -31,14 +32,17 @@ class ProfileError : public std::runtime_error {
 inline constexpr int kBuiltinProfileWidth = 512;
 inline constexpr int kBuiltinProfileHeight = 256;
 inline constexpr double kProfilePitchM = 0.153e-3;
-inline constexpr double kImageReliefM = 0.2e-3;
 
 std::vector<std::string> BuiltinProfileNames();
 std::optional<surface::HeightField> MakeBuiltinProfile(const std::string& name);
 
-// A built-in name, or else a picture file. Throws ProfileError naming the file (or listing the
-// built-ins when the argument is neither).
+// A built-in name, a texture.toml or a picture file. Throws ProfileError naming the file and
+// listing the built-ins.
 surface::HeightField LoadProfile(const std::string& name_or_path);
+
+// The material a texture file names ("wood" for textures/wooden_board/texture.toml); empty for
+// built-ins and pictures.
+std::string ProfileMaterial(const std::string& name_or_path);
 
 // Largest minus smallest height of a field (m): the relief the pen can feel.
 double ReliefM(const surface::HeightField& field);

@@ -66,9 +66,10 @@ double ParseNumberArg(const std::string& flag, const std::string& value, double 
 
 const char* RenderUsage() {
   return "usage: sketch-a-scratch render --out FILE.wav [options]\n"
-         "  --material NAME      material file NAME.toml (default wood)\n"
-         "  --profile NAME|FILE  built-in profile (grating, rough, bumps, cracks, flat) or a\n"
-         "                       picture (luminance -> height, 0.153 mm/pixel; default grating)\n"
+         "  --material NAME      material file NAME.toml (default: the texture's, else wood)\n"
+         "  --profile NAME|FILE  built-in profile (grating, rough, bumps, cracks, flat), a\n"
+         "                       kiosk texture (textures/NAME/texture.toml: its height map) or\n"
+         "                       a picture (gray-level changes -> ridges; default grating)\n"
          "  --gesture NAME|FILE  built-in gesture (\"slow stroke\", \"fast scribble\", \"tap\",\n"
          "                       \"passive sweep\") or a CSV file t,x,y,pressure,tilt\n"
          "                       (s, mm, mm, 0..1, degrees; default \"slow stroke\")\n"
@@ -183,8 +184,10 @@ RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
 RenderSummary Render(const RenderOptions& options) {
   if (options.block_frames < 1) throw RenderError("block size must be positive");
   RenderSummary summary;
-  const Material material =
-      FindMaterial(options.material, MaterialSearchDirs(options.materials_dir));
+  std::string material_name = options.material;
+  if (material_name.empty()) material_name = ProfileMaterial(options.profile);
+  if (material_name.empty()) material_name = "wood";
+  const Material material = FindMaterial(material_name, MaterialSearchDirs(options.materials_dir));
   summary.material_file = material.name;
   const surface::HeightField field = LoadProfile(options.profile);
   const Gesture gesture = LoadGesture(options.gesture);

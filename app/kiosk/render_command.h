@@ -1,8 +1,8 @@
 #pragma once
 // The offline renderer behind `sketch-a-scratch render`: a material (TOML file found by name), a
-// surface (built-in profile or picture) and a gesture (built-in or CSV) go through the same
-// synth::Scene the kiosk plays live, block by block with commands placed on their exact frames,
-// and come out as a 2-channel WAV (ch 1 sound, ch 2 haptic) plus a one-line summary.
+// surface (built-in profile, kiosk texture file or picture) and a gesture (built-in or CSV) go
+// through the same synth::Scene the kiosk plays live, block by block with commands placed on their
+// exact frames, and come out as a 2-channel WAV (ch 1 sound, ch 2 haptic) plus a one-line summary.
 //
 //   sketch-a-scratch render --material wood --profile grating --gesture "slow stroke"
 //                           --out out.wav [--fs 48000] [--tail-s 2] [--materials-dir DIR]
@@ -32,7 +32,7 @@ class RenderError : public std::runtime_error {
 };
 
 struct RenderOptions {
-  std::string material = "wood";
+  std::string material;  // empty: the texture file's material (--profile X.toml), else "wood"
   std::string profile = "grating";      // built-in name or picture file
   std::string gesture = "slow stroke";  // built-in name or CSV file
   std::string out_path;                 // required

@@ -8,7 +8,9 @@
 #include <cmath>
 
 #include "kiosk/builtin_profiles.h"
+#include "sas/version.h"
 #include "support/temp_dir.h"
+#include "surface/image_surface.h"
 
 using sas::kiosk::BuiltinProfileNames;
 using sas::kiosk::LoadProfile;
@@ -69,18 +71,31 @@ TEST_CASE("the rough profile varies everywhere while the cracks profile is mostl
   CHECK(plate < count);  // and there are cracks
 }
 
-TEST_CASE("a picture becomes a height field with white 0.2 mm high and black at 0", "[kiosk]") {
+TEST_CASE("a picture's gray-level edge becomes a ridge and its even halves stay flat", "[kiosk]") {
   sas::test::TempDir dir;
-  cv::Mat image(20, 30, CV_8UC1, cv::Scalar(0));
-  image(cv::Rect(15, 0, 15, 20)).setTo(cv::Scalar(255));
+  cv::Mat image(40, 60, CV_8UC1, cv::Scalar(0));
+  image(cv::Rect(30, 0, 30, 40)).setTo(cv::Scalar(255));
   const std::string path = dir.file("half.png");
   REQUIRE(cv::imwrite(path, image));
   const auto field = LoadProfile(path);
-  REQUIRE(field.width() == 30);
-  REQUIRE(field.height() == 20);
-  CHECK(field.pitch_m() == sas::kiosk::kProfilePitchM);
-  CHECK(field.at(3, 5) == Approx(0.0).margin(1e-9));
-  CHECK(field.at(20, 5) == Approx(sas::kiosk::kImageReliefM).epsilon(1e-4));
+  REQUIRE(field.width() == 60);
+  REQUIRE(field.height() == 40);
+  CHECK(field.pitch_m() == Approx(sas::surface::DisplayGeometry{}.pixel_pitch_mm() * 1e-3));
+  // Paper §2: even regions are flat, the change of gray level is the ridge.
+  CHECK(field.at(8, 20) == 0.0f);
+  CHECK(field.at(52, 20) == 0.0f);
+  const double relief_m = sas::surface::ReliefOptions{}.relief_mm * 1e-3;
+  CHECK(std::max(field.at(29, 20), field.at(30, 20)) == Approx(relief_m).epsilon(0.05));
+  CHECK(sas::kiosk::ProfileMaterial(path).empty());
+}
+
+TEST_CASE("a kiosk texture file gives its true height map and names its material", "[kiosk]") {
+  const std::string path = std::string(sas::kSourceDir) + "/textures/wooden_board/texture.toml";
+  const auto field = LoadProfile(path);
+  CHECK(field.width() == 1920);
+  CHECK(field.height() == 1080);
+  CHECK(ReliefM(field) > 0.0);
+  CHECK(sas::kiosk::ProfileMaterial(path) == "wood");
 }
 
 TEST_CASE("a profile that is neither built-in nor a picture names the file and the built-ins",

@@ -417,3 +417,16 @@ TEST_CASE(
     unsetenv("SAS_DATA_DIR");
   }
 }
+
+TEST_CASE("a kiosk texture file as the profile brings its own material unless one is given",
+          "[render]") {
+  sas::test::TempDir dir;
+  RenderOptions options;
+  options.profile = std::string(sas::kSourceDir) + "/textures/bubble_wrap/texture.toml";
+  options.gesture = dir.Write("stroke.csv", kShortStroke);
+  options.tail_s = 0.05;
+  options.out_path = dir.file("t.wav");
+  CHECK(Render(options).material_file == "bubble_wrap");
+  options.material = "metal";
+  CHECK(Render(options).material_file == "metal");
+}
