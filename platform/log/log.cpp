@@ -1,7 +1,8 @@
 // Logger (see log.h).
 #include "platform/log/log.h"
 
-#include <cstdio>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "platform/common/clock.h"
 
@@ -25,14 +26,22 @@ std::string LogLine::Text() const {
   return std::string(LogLevelName(level)) + " " + component + ": " + message;
 }
 
+Logger::Logger(std::size_t ring_capacity)
+    : capacity_(ring_capacity), out_fd_(fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 3)) {}
+
+Logger::~Logger() {
+  if (out_fd_ >= 0) close(out_fd_);
+}
+
 void Logger::Write(LogLevel level, std::string_view component, std::string_view message) {
   LogLine line{MonotonicNowNs(), level, std::string(component), std::string(message)};
   std::lock_guard lock(mutex_);
   if (level < min_level_) return;
   if (echo_) {
-    // One fprintf per line so lines from different threads never interleave mid-line.
-    const std::string text = line.Text();
-    std::fprintf(stderr, "%s\n", text.c_str());
+    // One write() per line (under our mutex) so lines never interleave mid-line.
+    const std::string text = line.Text() + "\n";
+    const int fd = out_fd_ >= 0 ? out_fd_ : STDERR_FILENO;
+    [[maybe_unused]] const ssize_t n = write(fd, text.data(), text.size());
   }
   ++count_;
   ring_.push_back(std::move(line));

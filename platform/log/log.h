@@ -31,7 +31,10 @@ struct LogLine {
 
 class Logger {
  public:
-  explicit Logger(std::size_t ring_capacity = 256) : capacity_(ring_capacity) {}
+  explicit Logger(std::size_t ring_capacity = 256);
+  ~Logger();
+  Logger(const Logger&) = delete;
+  Logger& operator=(const Logger&) = delete;
 
   void Write(LogLevel level, std::string_view component, std::string_view message);
   void Debug(std::string_view c, std::string_view m) { Write(LogLevel::kDebug, c, m); }
@@ -57,6 +60,9 @@ class Logger {
   std::uint64_t count_ = 0;
   LogLevel min_level_ = LogLevel::kInfo;
   bool echo_ = true;
+  // A private duplicate of stderr taken at construction: PortAudio's start-up mutes fd 2 for a
+  // moment (portaudio_session.h), and our lines from other threads must not vanish meanwhile.
+  int out_fd_ = -1;
 };
 
 // The process-wide logger the platform backends write to unless given another one.

@@ -1,4 +1,7 @@
 // SPSC queue, log ring and device status board.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <thread>
 
@@ -72,4 +75,26 @@ TEST_CASE("device status logs one line per change and none for repeats", "[platf
   const auto status = board.Get("pen");
   CHECK(status.backend == "libinput");
   CHECK(board.All().size() == 1);
+}
+
+TEST_CASE("log lines reach stderr while a library has fd 2 muted", "[platform]") {
+  int pipe_fds[2];
+  REQUIRE(pipe2(pipe_fds, O_CLOEXEC | O_NONBLOCK) == 0);
+  const int saved = dup(STDERR_FILENO);
+  dup2(pipe_fds[1], STDERR_FILENO);  // "the journal"
+  {
+    Logger logger;  // takes its own copy of stderr now
+    const int null_fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    dup2(null_fd, STDERR_FILENO);  // PortAudio start-up mutes fd 2...
+    close(null_fd);
+    logger.Warn("audio_out", "lost: device gone");  // ...while another thread logs
+  }
+  dup2(saved, STDERR_FILENO);
+  close(saved);
+  char buf[256] = {};
+  const ssize_t n = read(pipe_fds[0], buf, sizeof buf - 1);
+  close(pipe_fds[0]);
+  close(pipe_fds[1]);
+  REQUIRE(n > 0);
+  CHECK(std::string(buf, static_cast<std::size_t>(n)) == "warn audio_out: lost: device gone\n");
 }
