@@ -73,46 +73,59 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, dou
   return e;
 }
 
-// Root of R(d) = d - c + s·F(d) (F nondecreasing in d, so R is strictly increasing).
-double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h) {
+// Root of R(d) = d - c + s·F(d) (F nondecreasing in d, so R is strictly increasing). Returns d
+// and stores F(d) in *force. d = c (F = 0) is always an upper bound; the lower bound
+// c - s·F(c) (where R <= 0) is only computed if a Newton step needs the safeguard.
+double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h,
+                   double* force) {
+  *force = 0.0;
   if (x0 <= 0.0 && x0 + c <= 0.0) return c;  // the free motion never reaches the surface
   const double v0 = m.Potential(x0);
   double hi = c;
-  const double f_hi = NormalForce(m, x0, v0, hi, h).f;
-  if (!(f_hi > 0.0)) return c;
-  // F(lo) <= F(hi) for lo < hi, so lo = c - s F(c) has R(lo) <= 0.
-  double lo = c - compliance * f_hi;
-  // Start from the root of the problem linearised at d = 0 (resting contact: already close).
-  double d = lo;
+  double lo = -std::numeric_limits<double>::infinity();
+  bool lo_known = false;
+  auto lower_bound = [&]() {
+    const double f_hi = NormalForce(m, x0, v0, c, h).f;
+    lo_known = true;
+    return c - compliance * f_hi;  // F(lo) <= F(c), so R(lo) <= 0
+  };
+  // Start from the root of the problem linearised at d = 0 (resting contact: already close),
+  // or, for a contact starting in this step, from the lower bound.
+  double d = c;
   if (x0 > 0.0) {
     const double f0 = m.Force(x0);
     const double slope0 = 0.5 * m.alpha * f0 / x0 + f0 * m.mu / h;
-    const double guess = (c - compliance * f0) / (1.0 + compliance * slope0);
-    if (guess > lo && guess < hi) d = guess;
+    d = (c - compliance * f0) / (1.0 + compliance * slope0);
+  }
+  if (!(d < hi)) {
+    lo = lower_bound();
+    d = lo;
   }
   NormalEval e = NormalForce(m, x0, v0, d, h);
   double r = d - c + compliance * e.f;
-  if (r == 0.0) return d;
-  if (d == lo && r > 0.0) return d;
   const double scale = std::max(std::fabs(x0), std::fabs(c)) + 1e-300;
   for (int iteration = 0; iteration < 100; ++iteration) {
+    // Converged when the residual is at the rounding level of its terms.
+    if (r == 0.0 || std::fabs(r) <= 4.0 * kEps * (std::fabs(c) + std::fabs(d))) break;
     if (r < 0.0) {
       lo = d;
+      lo_known = true;
     } else {
       hi = d;
     }
     const double slope = 1.0 + compliance * e.df;
     double next = d - r / slope;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) {
+      if (!lo_known) lo = std::min(lower_bound(), hi);
+      next = (next > lo && next < hi) ? next : 0.5 * (lo + hi);
+    }
     const double step = std::fabs(next - d);
     d = next;
     e = NormalForce(m, x0, v0, d, h);
     r = d - c + compliance * e.f;
-    // Converged when the residual is at rounding level of its terms, or the iterate stalls.
-    if (std::fabs(r) <= 4.0 * kEps * (std::fabs(c) + std::fabs(d)) || step <= 2.0 * kEps * scale ||
-        hi - lo <= 2.0 * kEps * scale)
-      break;
+    if (step <= 2.0 * kEps * scale || hi - lo <= 2.0 * kEps * scale) break;
   }
+  *force = e.f;
   return d;
 }
 
@@ -304,9 +317,7 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
   constexpr int kMaxIterations = 24;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     if (in.impact_on) {
-      const double d =
-          SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h);
-      force = NormalForce(impact, in.x0, impact.Potential(in.x0), d, in.h).f;
+      SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h, &force);
     }
     if (!friction_on) break;
     du = SolveFriction(friction, in.z0, in.free_du + in.coupling * force, in.coupling, in.h,
