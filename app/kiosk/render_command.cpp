@@ -40,6 +40,11 @@ std::string Join(const std::vector<std::string>& items, const char* separator) {
   return joined;
 }
 
+bool IsPassiveSweep(const std::string& name) {
+  const auto builtin = FindBuiltinGesture(name);
+  return builtin && builtin->name == "passive sweep";
+}
+
 Gesture LoadGesture(const std::string& name_or_path) {
   if (auto builtin = FindBuiltinGesture(name_or_path)) return *builtin;
   std::error_code error;
@@ -73,6 +78,7 @@ const char* RenderUsage() {
          "  --gesture NAME|FILE  built-in gesture (\"slow stroke\", \"fast scribble\", \"tap\",\n"
          "                       \"passive sweep\") or a CSV file t,x,y,pressure,tilt\n"
          "                       (s, mm, mm, 0..1, degrees; default \"slow stroke\")\n"
+         "  --sweep-mps V        speed of the \"passive sweep\" (default 0.05 m/s)\n"
          "  --out FILE.wav       2-channel WAV: ch 1 sound, ch 2 haptic (required)\n"
          "  --fs HZ              sample rate, 8000..192000 (default 48000)\n"
          "  --tail-s S           seconds rendered after the pen is lifted (default 2)\n"
@@ -148,6 +154,8 @@ RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
       options.sound_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
     } else if (flag == "--haptic-gain-db") {
       options.haptic_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
+    } else if (flag == "--sweep-mps") {
+      options.sweep_mps = ParseNumberArg(flag, next(), 0.001, 2.0);
     } else if (flag == "--normalize") {
       if (has_value) throw RenderError("--normalize takes no value");
       options.normalize = true;
@@ -178,6 +186,9 @@ RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
     }
   }
   if (options.out_path.empty()) throw RenderError("--out FILE.wav is required");
+  if (options.sweep_mps && !IsPassiveSweep(options.gesture)) {
+    throw RenderError("--sweep-mps applies to --gesture \"passive sweep\" only");
+  }
   return options;
 }
 
@@ -190,7 +201,10 @@ RenderSummary Render(const RenderOptions& options) {
   const Material material = FindMaterial(material_name, MaterialSearchDirs(options.materials_dir));
   summary.material_file = material.name;
   const surface::HeightField field = LoadProfile(options.profile);
-  const Gesture gesture = LoadGesture(options.gesture);
+  // The passive mode: 70 mm along x at the set velocity with a steady push (gesture.h).
+  const Gesture gesture = options.sweep_mps && IsPassiveSweep(options.gesture)
+                              ? PassiveSweep(*options.sweep_mps, 70.0, 0.4)
+                              : LoadGesture(options.gesture);
   const double fs_hz = options.sample_rate_hz;
 
   GestureMapping mapping;

@@ -7,7 +7,7 @@
 //   sketch-a-scratch render --material wood --profile grating --gesture "slow stroke"
 //                           --out out.wav [--fs 48000] [--tail-s 2] [--materials-dir DIR]
 //                           [--format float|pcm24] [--style auto|scrape|rub|roll]
-//                           [--gain-db 0] [--haptic-gain-db 0] [--normalize]
+//                           [--gain-db 0] [--haptic-gain-db 0] [--normalize] [--sweep-mps V]
 //
 // Materials are looked up by name in, in order: --materials-dir, $SAS_DATA_DIR/materials, the
 // source tree's textures/materials, <install prefix>/share/sketch-a-scratch/materials; the first
@@ -33,10 +33,12 @@ class RenderError : public std::runtime_error {
 
 struct RenderOptions {
   std::string material;  // empty: the texture file's material (--profile X.toml), else "wood"
-  std::string profile = "grating";      // built-in name or picture file
+  std::string profile = "grating";      // built-in name, texture.toml or picture file
   std::string gesture = "slow stroke";  // built-in name or CSV file
-  std::string out_path;                 // required
-  std::string materials_dir;            // optional, searched first
+  // The passive mode at a set velocity (m/s): with gesture "passive sweep", replaces its 5 cm/s.
+  std::optional<double> sweep_mps;
+  std::string out_path;       // required
+  std::string materials_dir;  // optional, searched first
   int sample_rate_hz = 48000;
   double tail_s = 2.0;  // rendered after the pen is lifted
   surface::WavFormat format = surface::WavFormat::kFloat32;

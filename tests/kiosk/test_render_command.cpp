@@ -430,3 +430,15 @@ TEST_CASE("a kiosk texture file as the profile brings its own material unless on
   options.material = "metal";
   CHECK(Render(options).material_file == "metal");
 }
+
+TEST_CASE("the passive sweep runs at the velocity set on the command line", "[render]") {
+  sas::test::TempDir dir;
+  // 70 mm at 0.2 m/s takes 0.35 s; plus 0.05 s of tail.
+  const auto result = Run({"--gesture", "passive sweep", "--sweep-mps", "0.2", "--tail-s", "0.05",
+                           "--out", dir.file("s.wav")});
+  INFO(result.err);
+  REQUIRE(result.code == 0);
+  const Wav wav = ReadWav(dir.file("s.wav"));
+  CHECK(static_cast<double>(wav.channel[0].size()) / 48000.0 == Approx(0.4).margin(1e-3));
+  CHECK(Run({"--gesture", "tap", "--sweep-mps", "0.2", "--out", dir.file("t.wav")}).code == 2);
+}
