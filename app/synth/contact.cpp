@@ -382,6 +382,7 @@ ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, dou
   params.shape_alpha = alpha;
   params.oversample = oversample;
   ContactKernelConfig config;
+  config.scheme = used;
   config.impact.Set(params);
   config.friction.enabled = false;
   config.probe_mass_kg = mass_kg;

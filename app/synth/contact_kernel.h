@@ -24,6 +24,9 @@ namespace sas::synth {
 struct ContactKernelConfig {
   ImpactModel impact;
   FrictionModel friction;
+  // The scheme that runs (an unimplemented request is substituted, see
+  // IsContactSchemeImplemented). The sub-step solve dispatches on it: issue 4 adds its cases.
+  ContactScheme scheme = ContactScheme::kDiscreteGradient;
   double probe_mass_kg = 0.01;
   double period_s = 1.0 / 48000.0;
   double sub_step_s = 1.0 / 48000.0;
@@ -140,7 +143,13 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
       in.friction_normal_n = drive.friction_share * drive.push_n;
     }
     in.free_du = drive.slide_velocity_mps * h - free_resonator;
-    const ContactStepOutput out = SolveContactStep(config.impact, config.friction, in);
+    ContactStepOutput out;
+    switch (config.scheme) {
+      case ContactScheme::kDiscreteGradient:
+      default:
+        out = SolveContactStep(config.impact, config.friction, in);
+        break;
+    }
 
     contact_displacement += AdvanceModes(modes, modes.sub, out.friction_n - out.normal_n);
     if (impact_on) {

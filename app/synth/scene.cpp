@@ -232,6 +232,8 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
       std::max(FiniteOr(m.friction.stribeck_velocity_mps, 0.1), 1e-9);
   m.friction.breakaway_ratio =
       std::clamp(FiniteOr(m.friction.breakaway_ratio, 0.1), 1e-6, 1.0 - 1e-6);
+  s.config.scheme = IsContactSchemeImplemented(m.impact.scheme) ? m.impact.scheme
+                                                                : ContactScheme::kDiscreteGradient;
   s.config.impact.Set(m.impact);
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
