@@ -189,8 +189,12 @@ TextureOut BubbleWrap(const Canvas& c) {
         rim_shadow(y, x) = static_cast<float>(std::max<double>(rim_shadow(y, x), band));
         const double glow =
             0.5 * std::exp(-std::pow((d_px - layout.radius_px * 0.78) / (7.0 * c.scale), 2.0));
-        rim_glow(y, x) = static_cast<float>(
-            std::max<double>(rim_glow(y, x), d_px <= layout.radius_px ? glow : 0.0));
+        // The dome focuses the window light into a soft caustic on the far (lower right) side.
+        const double caustic = 0.9 * std::exp(-(std::pow(x - bx - 0.45 * layout.radius_px, 2.0) +
+                                                std::pow(y - by - 0.40 * layout.radius_px, 2.0)) /
+                                              (2.0 * std::pow(16.0 * c.scale, 2.0)));
+        rim_glow(y, x) = static_cast<float>(std::max<double>(
+            rim_glow(y, x), d_px <= layout.radius_px * 0.9 ? std::max(glow, caustic) : 0.0));
       }
     }
   }
