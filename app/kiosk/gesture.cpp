@@ -3,6 +3,7 @@
 #include "kiosk/gesture.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>

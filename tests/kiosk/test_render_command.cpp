@@ -442,3 +442,24 @@ TEST_CASE("the passive sweep runs at the velocity set on the command line", "[re
   CHECK(static_cast<double>(wav.channel[0].size()) / 48000.0 == Approx(0.4).margin(1e-3));
   CHECK(Run({"--gesture", "tap", "--sweep-mps", "0.2", "--out", dir.file("t.wav")}).code == 2);
 }
+
+TEST_CASE("the WAV writer refuses NaN samples without creating a file and clips 24-bit output",
+          "[render]") {
+  sas::test::TempDir dir;
+  const std::vector<float> bad = {0.1f, 0.2f, std::nanf(""), 0.0f};
+  CHECK_THROWS_WITH(sas::surface::WriteWav(dir.file("nan.wav"), bad.data(), 2, 2, 48000),
+                    Catch::Contains("nan.wav") && Catch::Contains("sample 1 of channel 1"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("nan.wav")));
+  CHECK_THROWS_AS(sas::surface::WriteWav(dir.file("r.wav"), bad.data(), 1, 2, 10),
+                  sas::surface::WavError);
+
+  const std::vector<float> loud = {1.5f, -2.0f, 0.5f, -0.25f};
+  sas::surface::WriteWav(dir.file("loud.wav"), loud.data(), 2, 2, 48000,
+                         sas::surface::WavFormat::kPcm24);
+  const Wav wav = ReadWav(dir.file("loud.wav"));
+  REQUIRE(wav.channels == 2);
+  CHECK(wav.channel[0][0] == Approx(1.0).margin(1e-6));
+  CHECK(wav.channel[1][0] == Approx(-1.0).margin(1e-6));
+  CHECK(wav.channel[0][1] == Approx(0.5).margin(1e-6));
+  CHECK(wav.channel[1][1] == Approx(-0.25).margin(1e-6));
+}
