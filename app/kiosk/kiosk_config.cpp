@@ -26,12 +26,55 @@ struct KeySpec {
   std::function<void(const toml::node&, KioskConfig&, const std::string& where)> apply;
 };
 
-auto Text(std::string KioskConfig::*member) {
-  return [member](const toml::node& node, KioskConfig& config, const std::string& where) {
+auto Text(std::string KioskConfig::*member, bool may_be_empty = false) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     const auto value = node.value<std::string>();
     if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
-    if (value->empty()) throw ConfigError(where + "must not be empty");
+    if (value->empty() && !may_be_empty) throw ConfigError(where + "must not be empty");
     config.*member = *value;
+  };
+}
+
+auto Choice(std::string KioskConfig::*member, std::vector<std::string> choices) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    std::string listed;
+    for (const auto& choice : choices) listed += (listed.empty() ? "" : ", ") + choice;
+    if (!node.is_string() || !value) {
+      throw ConfigError(where + "expected a string (one of " + listed + ")");
+    }
+    for (const auto& choice : choices) {
+      if (*value == choice) {
+        config.*member = *value;
+        return;
+      }
+    }
+    throw ConfigError(where + "\"" + *value + "\" is not one of " + listed);
+  };
+}
+
+auto Flag(bool KioskConfig::*member) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    if (!node.is_boolean()) throw ConfigError(where + "expected true or false");
+    config.*member = *node.value<bool>();
+  };
+}
+
+auto TextList(std::vector<std::string> KioskConfig::*member, std::size_t count) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto* array = node.as_array();
+    if (array == nullptr || array->size() != count) {
+      throw ConfigError(where + "expected a list of " + std::to_string(count) + " strings");
+    }
+    std::vector<std::string> values;
+    for (const auto& element : *array) {
+      const auto value = element.value<std::string>();
+      if (!element.is_string() || !value) {
+        throw ConfigError(where + "expected a list of " + std::to_string(count) + " strings");
+      }
+      values.push_back(*value);
+    }
+    config.*member = std::move(values);
   };
 }
 
@@ -67,6 +110,23 @@ const std::vector<KeySpec>& Schema() {
       {"audio", "input_device", Text(&KioskConfig::input_device)},
       {"audio", "sample_rate_hz", Integer(&KioskConfig::sample_rate_hz, 8000, 192000)},
       {"audio", "buffer_frames", Integer(&KioskConfig::buffer_frames, 16, 4096)},
+      {"audio", "reopen_backoff_initial_s",
+       Real(&KioskConfig::reopen_backoff_initial_s, 0.01, 60.0)},
+      {"audio", "reopen_backoff_max_s", Real(&KioskConfig::reopen_backoff_max_s, 0.1, 600.0)},
+      {"audio", "stall_timeout_s", Real(&KioskConfig::stall_timeout_s, 0.1, 60.0)},
+      {"recording", "max_duration_s", Real(&KioskConfig::record_max_duration_s, 0.5, 5.0)},
+      {"recording", "silence_rms_dbfs", Real(&KioskConfig::record_silence_rms_dbfs, -120.0, -6.0)},
+      {"recording", "clip_level", Real(&KioskConfig::record_clip_level, 0.5, 1.0)},
+      {"switches", "backend",
+       Choice(&KioskConfig::switches_backend, {"auto", "gpio", "mcp2221", "keyboard"})},
+      {"switches", "debounce_ms", Integer(&KioskConfig::switches_debounce_ms, 0, 1000)},
+      {"switches", "active_low", Flag(&KioskConfig::switches_active_low)},
+      {"switches", "gpio_chip", Text(&KioskConfig::gpio_chip)},
+      {"switches", "gpio_lines", TextList(&KioskConfig::gpio_lines, 5)},
+      {"switches", "mcp2221_path", Text(&KioskConfig::mcp2221_path, true)},
+      {"switches", "mcp2221_poll_ms", Integer(&KioskConfig::mcp2221_poll_ms, 5, 1000)},
+      {"pen", "device", Text(&KioskConfig::pen_device, true)},
+      {"pen", "seat", Text(&KioskConfig::pen_seat)},
       {"gains", "sound_gain_db", Real(&KioskConfig::sound_gain_db, -60.0, 40.0)},
       {"gains", "haptic_gain_db", Real(&KioskConfig::haptic_gain_db, -60.0, 40.0)},
       {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},

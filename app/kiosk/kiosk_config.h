@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace sas::kiosk {
 
@@ -19,6 +20,24 @@ struct KioskConfig {
   std::string input_device = "default";
   int sample_rate_hz = 48000;
   int buffer_frames = 128;
+  double reopen_backoff_initial_s = 0.25;  // a lost device is retried after this, doubling...
+  double reopen_backoff_max_s = 8.0;       // ...up to this
+  double stall_timeout_s = 1.0;            // no audio callback for this long = device lost
+  // [recording] — the visitor's voice, in RAM only.
+  double record_max_duration_s = 5.0;
+  double record_silence_rms_dbfs = -50.0;  // a quieter take counts as "nothing recorded"
+  double record_clip_level = 0.999;        // |sample| at or above this is clipped
+  // [switches] — the token switches and the record button.
+  std::string switches_backend = "auto";  // auto | gpio | mcp2221 | keyboard
+  int switches_debounce_ms = 30;
+  bool switches_active_low = true;      // switch to ground against the pull-up
+  std::string gpio_chip = "gpiochip0";  // name, path or label
+  std::vector<std::string> gpio_lines = {"17", "27", "22", "23", "24"};  // tokens 1-4, record
+  std::string mcp2221_path;  // hidraw path; empty = first 04d8:00dd adapter
+  int mcp2221_poll_ms = 15;
+  // [pen]
+  std::string pen_device;  // substring of the tablet's name; empty = the first tablet
+  std::string pen_seat = "seat0";
   // [gains] — deliberately high for a loud room; the output limiters keep samples in [-1, 1].
   double sound_gain_db = 12.0;
   double haptic_gain_db = 6.0;

@@ -62,6 +62,34 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.haptic_gain_db == defaults.haptic_gain_db);
   CHECK(shipped.idle_timeout_s == defaults.idle_timeout_s);
   CHECK(shipped.default_texture == defaults.default_texture);
+  CHECK(shipped.reopen_backoff_max_s == defaults.reopen_backoff_max_s);
+  CHECK(shipped.record_silence_rms_dbfs == defaults.record_silence_rms_dbfs);
+  CHECK(shipped.switches_backend == defaults.switches_backend);
+  CHECK(shipped.gpio_lines == defaults.gpio_lines);
+  CHECK(shipped.mcp2221_path == defaults.mcp2221_path);
+  CHECK(shipped.pen_seat == defaults.pen_seat);
+}
+
+TEST_CASE("switch, recording and pen keys are validated by type, choice and list length",
+          "[kiosk]") {
+  const auto config = ParseKioskConfig(
+      "[switches]\nbackend = \"mcp2221\"\nactive_low = false\n"
+      "gpio_lines = [\"TOKEN1\", \"TOKEN2\", \"TOKEN3\", \"TOKEN4\", \"\"]\n"
+      "[pen]\ndevice = \"Wacom\"\n[recording]\nmax_duration_s = 4\n",
+      "k.toml");
+  CHECK(config.switches_backend == "mcp2221");
+  CHECK_FALSE(config.switches_active_low);
+  CHECK(config.gpio_lines == std::vector<std::string>{"TOKEN1", "TOKEN2", "TOKEN3", "TOKEN4", ""});
+  CHECK(config.pen_device == "Wacom");
+  CHECK(config.record_max_duration_s == 4.0);
+  CHECK_THROWS_WITH(ParseKioskConfig("[switches]\nbackend = \"usb\"\n", "k.toml"),
+                    Catch::Contains("k.toml:2") && Catch::Contains("keyboard"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[switches]\ngpio_lines = [\"17\"]\n", "k.toml"),
+                    Catch::Contains("list of 5 strings"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[switches]\nactive_low = 1\n", "k.toml"),
+                    Catch::Contains("true or false"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[recording]\nmax_duration_s = 60\n", "k.toml"),
+                    Catch::Contains("out of range"));
 }
 
 TEST_CASE("a bad configuration falls back to the last good one, else to the defaults, and says so",
