@@ -126,6 +126,7 @@ struct KioskWindow::Impl {
   bool chord_fired = false;
   std::int64_t chord_since_ns = 0;
   bool staff_open = false;
+  std::int64_t last_event_ns = 0;
 
   // GPU textures of the pictures on screen (at most two: current and cross-fade source).
   struct Cached {
@@ -137,6 +138,14 @@ struct KioskWindow::Impl {
   int patch_w = 0, patch_h = 0;
 
   ~Impl() { Close(); }
+
+  // Event time on the monotonic clock, never earlier than the previous event's: SDL's 1 ms
+  // timestamps could otherwise put two close events out of order, and the audio side splits its
+  // blocks at event times.
+  std::int64_t Stamp(Uint32 sdl_timestamp_ms) {
+    last_event_ns = std::max(last_event_ns, EventTimeNs(sdl_timestamp_ms));
+    return last_event_ns;
+  }
 
   void Close() {
     for (auto& c : cache) SDL_DestroyTexture(c.texture);
@@ -212,7 +221,7 @@ struct KioskWindow::Impl {
   }
 
   void Key(const SDL_KeyboardEvent& k, bool down, std::vector<UiEvent>& out) {
-    const std::int64_t t = EventTimeNs(k.timestamp);
+    const std::int64_t t = Stamp(k.timestamp);
     const SDL_Keycode code = k.keysym.sym;
     if (code == chord.key || IsModifierKey(code)) {
       if (down && code == chord.key && !k.repeat && ModsSatisfy(chord, k.keysym.mod)) {
@@ -264,7 +273,7 @@ struct KioskWindow::Impl {
           case SDL_WINDOWEVENT_RESTORED: {
             UiEvent e;
             e.kind = UiEvent::Kind::kRedraw;
-            e.time_ns = EventTimeNs(ev.window.timestamp);
+            e.time_ns = Stamp(ev.window.timestamp);
             out.push_back(e);
             return;
           }
@@ -275,17 +284,15 @@ struct KioskWindow::Impl {
         if (ev.button.which == SDL_TOUCH_MOUSEID || ev.button.button != SDL_BUTTON_LEFT) return;
         if (mouse_down) return;
         mouse_down = true;
-        Pointer(
-            out, UiEvent::Kind::kPointerDown,
-            Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), true,
-                   options.mouse_pressure, StylusSource::kMouse, EventTimeNs(ev.button.timestamp)));
+        Pointer(out, UiEvent::Kind::kPointerDown,
+                Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), true,
+                       options.mouse_pressure, StylusSource::kMouse, Stamp(ev.button.timestamp)));
         return;
       case SDL_MOUSEMOTION:
         if (ev.motion.which == SDL_TOUCH_MOUSEID || finger_active) return;
-        Pointer(
-            out, UiEvent::Kind::kPointerMove,
-            Sample(static_cast<float>(ev.motion.x), static_cast<float>(ev.motion.y), mouse_down,
-                   options.mouse_pressure, StylusSource::kMouse, EventTimeNs(ev.motion.timestamp)));
+        Pointer(out, UiEvent::Kind::kPointerMove,
+                Sample(static_cast<float>(ev.motion.x), static_cast<float>(ev.motion.y), mouse_down,
+                       options.mouse_pressure, StylusSource::kMouse, Stamp(ev.motion.timestamp)));
         return;
       case SDL_MOUSEBUTTONUP:
         if (ev.button.which == SDL_TOUCH_MOUSEID || ev.button.button != SDL_BUTTON_LEFT) return;
@@ -293,7 +300,7 @@ struct KioskWindow::Impl {
         mouse_down = false;
         Pointer(out, UiEvent::Kind::kPointerUp,
                 Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), false,
-                       0.0f, StylusSource::kMouse, EventTimeNs(ev.button.timestamp)));
+                       0.0f, StylusSource::kMouse, Stamp(ev.button.timestamp)));
         return;
       case SDL_FINGERDOWN:
       case SDL_FINGERMOTION:
@@ -318,7 +325,7 @@ struct KioskWindow::Impl {
                 ev.type == SDL_FINGERDOWN ? UiEvent::Kind::kPointerDown
                 : up                      ? UiEvent::Kind::kPointerUp
                                           : UiEvent::Kind::kPointerMove,
-                Sample(x, y, !up, pressure, StylusSource::kTouch, EventTimeNs(f.timestamp)));
+                Sample(x, y, !up, pressure, StylusSource::kTouch, Stamp(f.timestamp)));
         return;
       }
       case SDL_KEYDOWN:
@@ -438,7 +445,8 @@ std::vector<UiEvent> KioskWindow::PollEvents(int wait_ms) {
   if (m.chord_held && !m.chord_fired) {
     const std::int64_t now = NowNs();
     if (static_cast<double>(now - m.chord_since_ns) * 1e-9 >= m.options.staff_chord.hold_s) {
-      m.FireChord(out, now);
+      m.last_event_ns = std::max(m.last_event_ns, now);
+      m.FireChord(out, m.last_event_ns);
     }
   }
   return out;
