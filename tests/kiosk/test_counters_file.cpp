@@ -67,7 +67,7 @@ TEST_CASE("usage counters survive a save and load round trip", "[kiosk]") {
   CHECK(loaded == Sample());
 }
 
-TEST_CASE("a missing counters file starts from zero; a damaged one is reported", "[kiosk]") {
+TEST_CASE("a missing counters file starts from zero and a damaged one is reported", "[kiosk]") {
   sas::test::TempDir dir;
   UsageCounters loaded;
   std::string error;

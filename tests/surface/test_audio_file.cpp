@@ -94,7 +94,7 @@ TEST_CASE("an 8 kHz recording is resampled to 48 kHz keeping pitch, level and le
     REQUIRE(std::fabs(clip.samples[i]) < 0.62f);
 }
 
-TEST_CASE("an 8-channel file is mixed down to the mean of its channels; 9 channels are refused",
+TEST_CASE("an 8-channel file is mixed down to the mean of its channels and 9 channels are refused",
           "[surface]") {
   sas::test::TempDir dir;
   std::vector<float> frames(8 * 4800);

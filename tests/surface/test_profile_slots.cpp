@@ -19,7 +19,7 @@ HeightField Ramp(int w, int h, double top_m) {
 }
 }  // namespace
 
-TEST_CASE("six slots store and recall surfaces; a replaced surface lives on for its reader",
+TEST_CASE("six slots store and recall surfaces and a replaced surface lives on for its reader",
           "[surface]") {
   ProfileSlots slots;
   for (int i = 0; i < ProfileSlots::kSlotCount; ++i) CHECK_FALSE(slots.occupied(i));
