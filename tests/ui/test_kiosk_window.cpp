@@ -255,7 +255,7 @@ TEST_CASE("a mouse drag becomes pointer down, moves and up at the pushed pixel p
 }
 
 TEST_CASE(
-    "a touch finger becomes a stroke in pixels with the panel's pressure; a second finger "
+    "a touch finger becomes a stroke in pixels with the panel's pressure and a second finger "
     "and SDL's synthetic mouse events are ignored",
     "[render]") {
   OffscreenDriver driver;
