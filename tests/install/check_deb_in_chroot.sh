@@ -46,6 +46,9 @@ in_root apt-get install -y -q "/tmp/kiosk.deb" >/dev/null
 fail=0
 for path in usr/bin/sketch-a-scratch usr/lib/systemd/system/sketch-a-scratch.service \
             usr/lib/udev/rules.d/60-sketch-a-scratch.rules etc/sketch-a-scratch/kiosk.toml \
+            usr/lib/modprobe.d/sketch-a-scratch.conf usr/share/man/man1/sketch-a-scratch.1.gz \
+            usr/share/sketch-a-scratch/materials/wood.toml \
+            usr/share/sketch-a-scratch/textures/wooden_board/picture.png \
             etc/systemd/system/multi-user.target.wants/sketch-a-scratch.service; do
   if [ -e "$root/$path" ] || [ -L "$root/$path" ]; then echo "installed: /$path"; else echo "MISSING: /$path"; fail=1; fi
 done
@@ -56,7 +59,9 @@ else
 fi
 in_root sketch-a-scratch --version
 unit=/usr/lib/systemd/system/sketch-a-scratch.service
-if verify="$(in_root systemd-analyze verify "$unit" 2>&1)" && [ -z "$verify" ]; then
+# --man=no: a minbase root has no man command to look up the unit's man: link; the page itself is in
+# the path list above, and the build's own verify test checks the link against the staged page.
+if verify="$(in_root systemd-analyze verify --man=no "$unit" 2>&1)" && [ -z "$verify" ]; then
   echo "systemd-analyze verify: clean"
 else
   echo "FAIL: systemd-analyze verify: $verify"; fail=1
