@@ -150,9 +150,10 @@ void ApplyTable(const toml::table& table, const std::string& prefix,
                 const std::vector<KeySpec<Target>>& specs, Target& target,
                 const std::string& source) {
   for (const auto& [key, node] : table) {
-    const std::string dotted = prefix + "." + std::string(key.str());
+    const std::string_view name = key.str();  // not captured as a binding: clang 14 cannot
+    const std::string dotted = prefix + "." + std::string(name);
     const auto spec = std::find_if(specs.begin(), specs.end(),
-                                   [&](const KeySpec<Target>& s) { return key.str() == s.key; });
+                                   [&](const KeySpec<Target>& s) { return name == s.key; });
     if (spec == specs.end()) {
       std::string known;
       for (const auto& s : specs) known += std::string(known.empty() ? "" : ", ") + s.key;

@@ -141,7 +141,10 @@ AudioClip ReadAudioFile(const std::string& path, const AudioReadLimits& limits) 
         const float s = block[static_cast<std::size_t>(f) * channels + c];
         if (!std::isfinite(s)) Fail(path, "contains non-finite samples (NaN or infinity)");
         if (std::fabs(s) >= limits.clip_level) ++clipped;
-        sum += static_cast<double>(s);
+        // Float files may hold any finite value, e.g. 3e38: clip to full scale so the clip keeps
+        // its [-1, 1] promise and the resampler's sums cannot overflow to infinity (a hazard
+        // spotted while fixing the fuzz finding below; tested in test_audio_file.cpp).
+        sum += std::clamp(static_cast<double>(s), -1.0, 1.0);
       }
       clip.samples.push_back(static_cast<float>(sum / static_cast<double>(channels)));
     }
@@ -151,6 +154,14 @@ AudioClip ReadAudioFile(const std::string& path, const AudioReadLimits& limits) 
   if (clip.samples.empty()) Fail(path, "no audio frames could be decoded (truncated or corrupt)");
   const double source_count = static_cast<double>(clip.samples.size() * channels);
   clip.samples = Resample(clip.samples, rate, limits.target_rate_hz);
+  // A few frames at a high rate can resample to nothing (2 frames at 345 kHz = 0.28 samples at
+  // 48 kHz; found by fuzzing): an empty clip would break every caller's "at least one sample".
+  if (clip.samples.empty()) {
+    Fail(path,
+         "too short: " + std::to_string(static_cast<long long>(source_count) / info.channels) +
+             " frames at " + std::to_string(info.samplerate) + " Hz give no sample at " +
+             std::to_string(static_cast<int>(limits.target_rate_hz)) + " Hz");
+  }
   clip.sample_rate_hz = limits.target_rate_hz;
   AnalyseLevels(clip, limits);
   clip.clipped_fraction = static_cast<double>(clipped) / source_count;

@@ -6,7 +6,7 @@
 //
 // Limits are checked from the file's header before any sample is read, so a 2-hour file or a
 // 64-channel file is refused without reading it. Handling of the awkward cases:
-//   empty (0 frames)        -> LoadError
+//   empty (0 frames), or too short to give one sample at target_rate_hz -> LoadError
 //   more than max_channels  -> LoadError; up to max_channels (default 8) are mixed down
 //   longer than max_duration_s -> LoadError (from the header, nothing decoded)
 //   sample rate below min_rate_hz or above max_rate_hz -> LoadError; otherwise resampled
@@ -14,6 +14,7 @@
 //   silent (peak below silence_peak)  -> loads; AudioClip::silent is set, so the caller can tell
 //                                        the visitor instead of storing a flat surface
 //   clipped                         -> loads unchanged; AudioClip::clipped_fraction says how much
+//   float samples beyond full scale -> clipped to [-1, 1] (and counted in clipped_fraction)
 // Set-up time only (exceptions), never on the audio thread.
 
 #include <cstdint>

@@ -60,7 +60,10 @@ std::optional<PopEvent> BubbleWrapState::Press(double x_px, double y_px, double 
     return std::nullopt;
   }
   popped_[static_cast<std::size_t>(bubble)] = true;
-  const auto [cx, cy] = centres_[static_cast<std::size_t>(bubble)];
+  // Plain variables, not a structured binding: clang 14 (Debian's, used for the fuzz build) cannot
+  // capture bindings in the lambda below (C++20 P1091 arrived in clang 16).
+  const double cx = centres_[static_cast<std::size_t>(bubble)].first;
+  const double cy = centres_[static_cast<std::size_t>(bubble)].second;
   // Flatten: every sample within the flatten radius drops to the lowest level found there (the
   // film between bubbles), the rim included.
   const HeightField& old = *current_;

@@ -207,3 +207,39 @@ TEST_CASE("sample rates outside the configured range are refused, not misread", 
   CHECK(clip.samples.size() == 48000);
   CHECK(CrossingRateHz(clip.samples, 48000.0) == Approx(100.0).epsilon(0.01));
 }
+
+TEST_CASE("a recording too short to give one sample at 48 kHz is refused instead of loading empty",
+          "[surface]") {
+  // Found by fuzzing (tests/fuzz/regressions/audio_file/): 2 frames at 345 kHz are 0.28 samples at
+  // 48 kHz, and the reader used to return a clip with no samples at all.
+  sas::test::TempDir dir;
+  const auto path = WriteSound(dir.file("blip.wav"), SF_FORMAT_WAV | SF_FORMAT_FLOAT, 345000, 2,
+                               {0.5f, -0.5f, 0.25f, -0.25f});
+  CHECK_THROWS_WITH(ReadAudioFile(path), Catch::Contains("too short"));
+  // Eight frames at 345 kHz still make one sample: loaded, not refused.
+  const auto eight = WriteSound(dir.file("eight.wav"), SF_FORMAT_WAV | SF_FORMAT_FLOAT, 345000, 1,
+                                std::vector<float>(8, 0.5f));
+  CHECK(ReadAudioFile(eight).samples.size() == 1);
+}
+
+TEST_CASE(
+    "float samples far beyond full scale are clipped to full scale and counted, never infinite",
+    "[surface]") {
+  sas::test::TempDir dir;
+  std::vector<float> huge(4800);
+  for (std::size_t i = 0; i < huge.size(); ++i) huge[i] = (i % 3 == 0) ? 3e38f : -3e38f;
+  for (const int rate : {48000, 44100}) {
+    const auto clip = ReadAudioFile(WriteSound(dir.file("huge" + std::to_string(rate) + ".wav"),
+                                               SF_FORMAT_WAV | SF_FORMAT_FLOAT, rate, 1, huge));
+    REQUIRE_FALSE(clip.samples.empty());
+    CHECK(clip.clipped_fraction == 1.0);
+    bool all_finite = true;
+    for (const float s : clip.samples) all_finite = all_finite && std::isfinite(s);
+    CHECK(all_finite);
+    if (rate == 48000) {  // no resampling: exactly full scale
+      CHECK(clip.peak == 1.0f);
+    } else {  // the band-limited resampler may ring a little past full scale, never far
+      CHECK(clip.peak < 2.0f);
+    }
+  }
+}
