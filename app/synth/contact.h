@@ -12,7 +12,7 @@
 // chosen (V = k x₊^(α+1)/(α+1), f(x, ẋ) = k x₊^α max(1 + μ ẋ, 0)):
 //
 // kDiscreteGradient (Chatziioannou & van Walstijn, "Energy conserving schemes for the simulation
-//   of musical instrument contact dynamics", JSV 339, 2015):
+//   of musical instrument contact dynamics", J. Sound Vib., 2015):
 //             F = G·P,  G = [V(x1) - V(x0)] / (x1 - x0)  (discrete gradient of V)
 //             P = max(1 + μ (x1 - x0)/h, 0)              (Hunt–Crossley loss; clamped = no pull)
 //             ⇒ work = ΔV + G μ Δx²/h (or ΔV - G Δx with Δx < 0 when clamped) ≥ ΔV.
@@ -33,11 +33,14 @@
 //   it took. F Δx(F) = F (c - C F) is a parabola, so F_max is the root of C F² - c F - E = 0 in
 //   closed form (no iteration). What is left in E when the contact opens is dissipated.
 // kEnergyQuadratised (IEQ/SAV: Ducceschi & Bilbao, "Simulation of the geometrically exact
-//   nonlinear string via energy quadratisation", JSV 534, 2022; Bilbao, Ducceschi & Zama,
-//   "Explicit exactly energy-conserving methods for Hamiltonian systems", JCP 472, 2023):
-//             ψ ≈ √(2 V(x)) is carried as a state; g(x) = dψ/dx = √(k(α+1)/2) x₊^((α-1)/2)
-//             ψ1 = ψ0 + g* Δx,  F = g* (ψ0 + ψ1)/2 + k μ x*^α Δx / h,  g*, x* at the predicted
-//             mid-step compression x* = x0 + ½ (c - C F_previous)
+//   nonlinear string via energy quadratisation", J. Sound Vib., 2022; Bilbao, Ducceschi & Zama,
+//   "Explicit exactly energy-conserving methods for Hamiltonian systems", J. Comput. Phys., 2023):
+//             ψ ≈ Ψ(x) = √(2 V(x)) is carried as a state,
+//             ψ1 = ψ0 + g Δx,  F = g (ψ0 + ψ1)/2 + μ G Δx / h,
+//             g = [Ψ(x̂1) - Ψ(x0)] / (x̂1 - x0), G = [V(x̂1) - V(x0)] / (x̂1 - x0), taken over the
+//             PREDICTED step x̂1 = x0 + c - C F_previous (known before the solve). Any g keeps the
+//             energy identity; the secant (rather than Ψ' = √(k(α+1)/2) x^((α-1)/2) at a mid
+//             point) stays second-order accurate where Ψ' is singular (x -> 0) and across onset.
 //   F is affine in Δx, so the step is ONE linear solve (no iteration). F Δx = Δ(ψ²/2) + loss
 //   exactly: the modified energy ψ²/2 + bodies never increases, for any h. Second order. A force
 //   that would pull (F < 0) is replaced by 0 with |ψ1| ≤ |ψ0| (dissipative); ψ is dropped when
