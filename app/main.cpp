@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/impact_command.h"
 #include "kiosk/render_command.h"
 #include "platform/discovery.h"
 #include "sas/version.h"
@@ -22,6 +23,7 @@ void PrintUsage() {
       "  (no command)     start the kiosk; headless default when there is no display\n"
       "  render ...       render a material, surface and gesture to a 2-channel WAV\n"
       "                   (sketch-a-scratch render --help)\n"
+      "  impact ...       simulate one probe impact on a rigid wall, print JSON vs closed form\n"
       "  --list-devices   print the audio devices, GPIO chips, USB adapters and tablets found\n"
       "  --version        print the version\n"
       "  --help           this text\n");
@@ -75,6 +77,9 @@ int main(int argc, char** argv) {
   }
   if (command == "render") {
     return sas::kiosk::RunRenderCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
+  }
+  if (command == "impact") {
+    return sas::kiosk::RunImpactCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
   }
   if (command == "--list-devices") {
     PrintDeviceReport(sas::ui::ProbeDisplay());

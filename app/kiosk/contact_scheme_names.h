@@ -1,7 +1,7 @@
 #pragma once
 // The contact schemes' names as staff and engineers write them: in material files
 // (`scheme = "discrete_gradient"`) and on the command line (`--scheme discrete-gradient`; '-' and
-// '_' are interchangeable).
+// '_' are interchangeable), and the friction's bristle updates (`bristle_update = "exponential"`).
 
 #include <string>
 #include <string_view>
@@ -15,5 +15,10 @@ const char* ContactSchemeName(synth::ContactScheme scheme);
 bool ParseContactScheme(std::string_view name, synth::ContactScheme* scheme);
 // "explicit_passive, trapezoid_newton, ..." for error messages.
 std::string ContactSchemeChoices();
+
+const char* BristleUpdateName(synth::BristleUpdate update);
+// False when `name` is not a bristle update ("exponential", "explicit_euler").
+bool ParseBristleUpdate(std::string_view name, synth::BristleUpdate* update);
+std::string BristleUpdateChoices();
 
 }  // namespace sas::kiosk

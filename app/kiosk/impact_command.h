@@ -24,7 +24,7 @@ struct ImpactOptions {
   double alpha = 1.5;
   double v_in_mps = 1.0;
   double sample_rate_hz = 48000.0;
-  synth::ContactScheme scheme = synth::ContactScheme::kDiscreteGradient;
+  synth::ContactScheme scheme = synth::kDefaultContactScheme;
   int oversample = 0;  // 0: the engine's automatic choice from N_c
   double phase = 0.0;  // sub-sample onset phase in [0, 1)
 };

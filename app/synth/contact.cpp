@@ -73,37 +73,28 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, dou
   return e;
 }
 
-// Root of R(d) = d - c + s·F(d) (F nondecreasing in d, so R is strictly increasing). Returns d
-// and stores F(d) in *force. d = c (F = 0) is always an upper bound; the lower bound
-// c - s·F(c) (where R <= 0) is only computed if a Newton step needs the safeguard.
-double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h,
-                   double* force) {
-  *force = 0.0;
-  if (x0 <= 0.0 && x0 + c <= 0.0) return c;  // the free motion never reaches the surface
-  const double v0 = m.Potential(x0);
+// Root of R(d) = d - c + s·F(d), F nondecreasing in d (so R is strictly increasing), starting
+// from d_start. `force(d)` returns F(d) and dF/dd. Returns d and stores F(d) in *force_out.
+// hi = c is an upper bound when F >= 0; the lower bound c - s·F(c) (where R <= 0) is only
+// computed if a Newton step needs the safeguard (or d_start is not below hi).
+template <class ForceFn>
+double SolveMonotone(const ForceFn& force, double c, double compliance, double d_start,
+                     double scale, double* force_out) {
   double hi = c;
   double lo = -std::numeric_limits<double>::infinity();
   bool lo_known = false;
   auto lower_bound = [&]() {
-    const double f_hi = NormalForce(m, x0, v0, c, h).f;
+    const double f_hi = force(c).f;
     lo_known = true;
     return c - compliance * f_hi;  // F(lo) <= F(c), so R(lo) <= 0
   };
-  // Start from the root of the problem linearised at d = 0 (resting contact: already close),
-  // or, for a contact starting in this step, from the lower bound.
-  double d = c;
-  if (x0 > 0.0) {
-    const double f0 = m.Force(x0);
-    const double slope0 = 0.5 * m.alpha * f0 / x0 + f0 * m.mu / h;
-    d = (c - compliance * f0) / (1.0 + compliance * slope0);
-  }
+  double d = d_start;
   if (!(d < hi)) {
     lo = lower_bound();
     d = lo;
   }
-  NormalEval e = NormalForce(m, x0, v0, d, h);
+  NormalEval e = force(d);
   double r = d - c + compliance * e.f;
-  const double scale = std::max(std::fabs(x0), std::fabs(c)) + 1e-300;
   for (int iteration = 0; iteration < 100; ++iteration) {
     // Converged when the residual is at the rounding level of its terms.
     if (r == 0.0 || std::fabs(r) <= 4.0 * kEps * (std::fabs(c) + std::fabs(d))) break;
@@ -121,12 +112,150 @@ double SolveNormal(const ImpactModel& m, double x0, double c, double compliance,
     }
     const double step = std::fabs(next - d);
     d = next;
-    e = NormalForce(m, x0, v0, d, h);
+    e = force(d);
     r = d - c + compliance * e.f;
     if (step <= 2.0 * kEps * scale || hi - lo <= 2.0 * kEps * scale) break;
   }
-  *force = e.f;
+  *force_out = e.f;
   return d;
+}
+
+// Discrete-gradient normal solve: F(d) = G(x0, x0 + d)·max(1 + μ d / h, 0).
+double SolveNormal(const ImpactModel& m, double x0, double c, double compliance, double h,
+                   double* force) {
+  *force = 0.0;
+  if (x0 <= 0.0 && x0 + c <= 0.0) return c;  // the free motion never reaches the surface
+  const double v0 = m.Potential(x0);
+  // Start from the root of the problem linearised at d = 0 (resting contact: already close),
+  // or, for a contact starting in this step, from the lower bound.
+  double d = c;
+  if (x0 > 0.0) {
+    const double f0 = m.Force(x0);
+    const double slope0 = 0.5 * m.alpha * f0 / x0 + f0 * m.mu / h;
+    d = (c - compliance * f0) / (1.0 + compliance * slope0);
+  }
+  const double scale = std::max(std::fabs(x0), std::fabs(c)) + 1e-300;
+  return SolveMonotone([&](double dd) { return NormalForce(m, x0, v0, dd, h); }, c, compliance, d,
+                       scale, force);
+}
+
+// Hunt–Crossley force f(x, ẋ) = k x₊^α max(1 + μ ẋ, 0) (never pulls) and its partial derivatives.
+struct HuntCrossley {
+  double f = 0.0, df_dx = 0.0, df_dxdot = 0.0;
+};
+HuntCrossley HuntCrossleyForce(const ImpactModel& m, double x, double xdot) {
+  HuntCrossley out;
+  if (x <= 0.0) return out;
+  const double p = 1.0 + m.mu * xdot;
+  if (p <= 0.0) return out;
+  const double elastic = m.k * m.PowAlpha(x);
+  out.f = elastic * p;
+  out.df_dx = m.alpha * elastic / x * p;
+  out.df_dxdot = elastic * m.mu;
+  return out;
+}
+
+// Passivity guard shared by the explicit and trapezoid schemes (contact.h): the largest force
+// F >= 0 whose work keeps the contact's received energy non-negative, E + F (c - C F) >= 0.
+double PassiveForceLimit(double c, double compliance, double energy) {
+  const double e = std::max(energy, 0.0);
+  return (c + std::sqrt(c * c + 4.0 * compliance * e)) / (2.0 * compliance);
+}
+
+// The normal solve of each scheme for a free compression change c (friction coupling included):
+// the held force, the compression change and the scheme's contact state after the step.
+struct NormalStep {
+  double force = 0.0;
+  double dx = 0.0;
+  double aux = 0.0;
+  double energy_j = 0.0;
+};
+
+NormalStep DiscreteGradientNormal(const ImpactModel& m, const ContactStepInput& in, double c) {
+  NormalStep s;
+  s.dx = SolveNormal(m, in.x0, c, in.normal_compliance, in.h, &s.force);
+  s.energy_j = m.Potential(in.x0 + s.dx);
+  return s;
+}
+
+// Applies the passivity guard to a force F >= 0 and books its work into the contact energy.
+NormalStep GuardedNormal(const ContactStepInput& in, double c, double force) {
+  NormalStep s;
+  const double e0 = in.x0 > 0.0 ? std::max(in.aux0, 0.0) : 0.0;  // an open contact holds nothing
+  s.force = std::clamp(force, 0.0, PassiveForceLimit(c, in.normal_compliance, e0));
+  s.dx = c - in.normal_compliance * s.force;
+  // Released energy is dissipated when the contact opens.
+  s.aux = in.x0 + s.dx > 0.0 ? std::max(e0 + s.force * s.dx, 0.0) : 0.0;
+  s.energy_j = s.aux;
+  return s;
+}
+
+NormalStep ExplicitNormal(const ImpactModel& m, const ContactStepInput& in, double c) {
+  return GuardedNormal(in, c, HuntCrossleyForce(m, in.x0, in.xdot0).f);
+}
+
+NormalStep TrapezoidNormal(const ImpactModel& m, const ContactStepInput& in, double c) {
+  const double f0 = HuntCrossleyForce(m, in.x0, in.xdot0).f;
+  const double h = in.h;
+  if (in.x0 + c - in.normal_compliance * 0.5 * f0 <= 0.0) {
+    return GuardedNormal(in, c, 0.5 * f0);  // ends open: only the start-of-step half acts
+  }
+  // R(d) = d - c + C (½ f0 + ½ f1(d)) = d - c_eff + C ½ f1(d), f1(d) = f(x0 + d, 2d/h - ẋ0):
+  // ½ f1 is nondecreasing and convex in d, so SolveMonotone applies with c_eff.
+  auto half_end_force = [&](double d) {
+    const HuntCrossley end = HuntCrossleyForce(m, in.x0 + d, 2.0 * d / h - in.xdot0);
+    return NormalEval{0.5 * end.f, 0.5 * (end.df_dx + 2.0 / h * end.df_dxdot)};
+  };
+  const double compliance = in.normal_compliance;
+  const double c_eff = c - compliance * 0.5 * f0;
+  // Start from the root of the residual linearised at d = 0.
+  const NormalEval at0 = half_end_force(0.0);
+  const double d_start = (c_eff - compliance * at0.f) / (1.0 + compliance * at0.df);
+  const double scale = std::max(std::fabs(in.x0), std::fabs(c)) + 1e-300;
+  double half_f1 = 0.0;
+  SolveMonotone(half_end_force, c_eff, compliance, d_start, scale, &half_f1);
+  return GuardedNormal(in, c, 0.5 * f0 + half_f1);
+}
+
+NormalStep QuadratisedNormal(const ImpactModel& m, const ContactStepInput& in, double c) {
+  NormalStep s;
+  const double compliance = in.normal_compliance;
+  // ψ belongs to one contact: dropped (dissipated) when the step starts open.
+  const double psi0 = in.x0 > 0.0 ? in.aux0 : 0.0;
+  // Predicted step: the free motion under the previous step's force (second-order accurate).
+  const double d_pred = c - compliance * std::max(in.normal_guess_n, 0.0);
+  const double x_pred = in.x0 + d_pred;
+  double g = 0.0, damping = 0.0;
+  if (in.x0 > 0.0 || x_pred > 0.0) {
+    // g: the secant of Ψ(x) = √(2 V(x)) over the predicted step (dψ/dx = √(k(α+1)/2) x^((α-1)/2)
+    // at a mid-step point; the secant stays accurate where that derivative is singular, x -> 0,
+    // and across the onset). The loss λ x^α ẋ as μ G Δx / h with G the secant of V (the
+    // discrete-gradient form of the damping).
+    const double v0 = m.Potential(in.x0), v1 = m.Potential(x_pred);
+    if (std::fabs(d_pred) > 1e-6 * std::max(std::fabs(in.x0), std::fabs(x_pred))) {
+      g = (std::sqrt(2.0 * v1) - std::sqrt(2.0 * v0)) / d_pred;
+      damping = m.mu * (v1 - v0) / d_pred / in.h;
+    } else {
+      const double x = in.x0 + 0.5 * d_pred;  // tiny step: the derivative at its midpoint
+      const double elastic = m.k * m.PowAlpha(x);
+      g = std::sqrt(0.5 * (m.alpha + 1.0) * elastic / x);
+      damping = m.mu * elastic / in.h;
+    }
+  }
+  // F = g ψ0 + a Δx, Δx = c - C F: one linear solve.
+  const double a = 0.5 * g * g + damping;
+  s.force = (g * psi0 + a * c) / (1.0 + a * compliance);
+  if (s.force >= 0.0) {
+    s.dx = c - compliance * s.force;
+    s.aux = psi0 + g * s.dx;
+  } else {
+    // The contact would pull: no force, and |ψ| may only shrink (the step dissipates).
+    s.force = 0.0;
+    s.dx = c;
+    s.aux = std::clamp(psi0 + g * c, -std::fabs(psi0), std::fabs(psi0));
+  }
+  s.energy_j = 0.5 * s.aux * s.aux;
+  return s;
 }
 
 double FrictionResidual(const FrictionModel& fm, double z0, double u, double a, double coupling,
@@ -205,7 +334,14 @@ double SolveFriction(const FrictionModel& fm, double z0, double a, double coupli
 }  // namespace
 
 bool IsContactSchemeImplemented(ContactScheme scheme) {
-  return scheme == ContactScheme::kDiscreteGradient;
+  switch (scheme) {
+    case ContactScheme::kExplicitPassive:
+    case ContactScheme::kTrapezoidNewton:
+    case ContactScheme::kDiscreteGradient:
+    case ContactScheme::kEnergyQuadratised:
+      return true;
+  }
+  return false;
 }
 
 void ImpactModel::Set(const ImpactParams& params) {
@@ -239,6 +375,7 @@ void FrictionModel::Set(const FrictionParams& params) {
   mu_d = params.dynamic_coefficient;
   v_s = params.stribeck_velocity_mps;
   c_ba = params.breakaway_ratio;
+  bristle_update = params.bristle_update;
 }
 
 double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
@@ -249,6 +386,18 @@ double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
 double FrictionModel::SteadySlidingForce(double v_mps, double fn) const {
   return sigma0 * SteadyDeflection(std::fabs(v_mps), fn) + sigma2 * std::fabs(v_mps);
 }
+
+namespace {
+
+// Dupont et al.'s α(z, v) for a deflection w >= 0 along the slip (friction.md): 0 in the elastic
+// range w <= z_ba, a sine ramp up to z_ss, 1 beyond.
+double BristleAlpha(double w, double z_ss, double z_ba) {
+  if (w >= z_ss || !(z_ss > z_ba)) return 1.0;
+  if (w <= z_ba) return 0.0;
+  return 0.5 * (1.0 + std::sin(std::numbers::pi * (w - 0.5 * (z_ss + z_ba)) / (z_ss - z_ba)));
+}
+
+}  // namespace
 
 BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, double h, double fn) {
   BristleStep out;
@@ -265,6 +414,13 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
   const double z_ss = model.SteadyDeflection(total / h, fn);
   const double z_ba = model.c_ba * model.mu_d * fn / model.sigma0;
   double w = sign * z0;
+  if (model.bristle_update == BristleUpdate::kExplicitEuler) {
+    // Forward Euler over the whole slip, force from the deflection at the start (explicit).
+    // Unstable once total / z_ss > 2: kept for the benchmark's comparison only.
+    out.z1 = sign * (w + total * (1.0 - BristleAlpha(w, z_ss, z_ba) * w / z_ss));
+    out.mean_z = z0;
+    return out;
+  }
   double left = total;
   double integral = 0.0;  // ∫ w dslip
   // Elastic (presliding) part: α = 0 while w <= z_ba (this includes w < 0, sgn z ≠ sgn v).
@@ -276,10 +432,7 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
   }
   // Elasto-plastic and plastic parts: exact exponential relaxation with α frozen per piece.
   for (int i = 0; i < 64 && left > 0.0; ++i) {
-    double alpha = 1.0;
-    if (w < z_ss && z_ss > z_ba) {
-      alpha = 0.5 * (1.0 + std::sin(std::numbers::pi * (w - 0.5 * (z_ss + z_ba)) / (z_ss - z_ba)));
-    }
+    const double alpha = w < z_ss ? BristleAlpha(w, z_ss, z_ba) : 1.0;
     double piece = left;
     if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
     const double r = alpha * piece / z_ss;
@@ -302,25 +455,28 @@ double FrictionStepForce(const FrictionModel& model, double z0, const BristleSte
   return model.sigma0 * step.mean_z + damping + model.sigma2 * du / h + noise_n;
 }
 
-ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionModel& friction,
-                                   const ContactStepInput& in) {
+namespace {
+
+// Normal force (one scheme's NormalStep for a given free compression change) and friction,
+// coupled through the shared resonator: block Gauss–Seidel on the friction force f -> Φ(f)
+// (normal solve, then friction solve), accelerated by secant steps on the fixed-point residual
+// Φ(f) - f for the first iterations (strong coupling: light modes, soft bristles), plain
+// Gauss–Seidel after that.
+template <class NormalFn>
+ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepInput& in,
+                               const NormalFn& normal) {
   ContactStepOutput out;
   const bool friction_on = in.friction_on && in.friction_normal_n > 0.0;
   double f = friction_on ? in.friction_guess_n : 0.0;
-  double force = 0.0;
+  NormalStep ns;
   double du = in.free_du;
   const bool coupled = in.impact_on && friction_on && in.coupling > 0.0;
-  // Block Gauss–Seidel on the friction force f -> Φ(f) (normal solve, then friction solve),
-  // accelerated by secant steps on the fixed-point residual Φ(f) - f for the first iterations
-  // (strong coupling: light modes, soft bristles), plain Gauss–Seidel after that.
   double f_prev = 0.0, g_prev = 0.0;
   constexpr int kMaxIterations = 24;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    if (in.impact_on) {
-      SolveNormal(impact, in.x0, in.free_dx + in.coupling * f, in.normal_compliance, in.h, &force);
-    }
+    if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
     if (!friction_on) break;
-    du = SolveFriction(friction, in.z0, in.free_du + in.coupling * force, in.coupling, in.h,
+    du = SolveFriction(friction, in.z0, in.free_du + in.coupling * ns.force, in.coupling, in.h,
                        in.friction_normal_n, in.noise_n);
     const BristleStep b = AdvanceBristle(friction, in.z0, du, in.h, in.friction_normal_n);
     const double f_new = FrictionStepForce(friction, in.z0, b, du, in.h, in.noise_n);
@@ -342,11 +498,38 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
     g_prev = g;
     f = next;
   }
-  out.normal_n = force;
+  out.normal_n = ns.force;
   out.friction_n = f;
-  out.dx = in.free_dx - in.normal_compliance * force + in.coupling * f;
-  out.du = in.free_du - in.coupling * f + in.coupling * force;
+  out.aux1 = ns.aux;
+  out.contact_energy_j = ns.energy_j;
+  out.dx = in.free_dx - in.normal_compliance * ns.force + in.coupling * f;
+  out.du = in.free_du - in.coupling * f + in.coupling * ns.force;
   return out;
+}
+
+}  // namespace
+
+ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionModel& friction,
+                                   const ContactStepInput& in) {
+  return SolveCoupled(friction, in,
+                      [&](double c) { return DiscreteGradientNormal(impact, in, c); });
+}
+
+ContactStepOutput SolveContactStepTrapezoid(const ImpactModel& impact,
+                                            const FrictionModel& friction,
+                                            const ContactStepInput& in) {
+  return SolveCoupled(friction, in, [&](double c) { return TrapezoidNormal(impact, in, c); });
+}
+
+ContactStepOutput SolveContactStepExplicit(const ImpactModel& impact, const FrictionModel& friction,
+                                           const ContactStepInput& in) {
+  return SolveCoupled(friction, in, [&](double c) { return ExplicitNormal(impact, in, c); });
+}
+
+ContactStepOutput SolveContactStepQuadratised(const ImpactModel& impact,
+                                              const FrictionModel& friction,
+                                              const ContactStepInput& in) {
+  return SolveCoupled(friction, in, [&](double c) { return QuadratisedNormal(impact, in, c); });
 }
 
 double RigidWallContactTime(double mass_kg, double k, double alpha, double v_in) {
@@ -365,18 +548,18 @@ int ChooseContactOversample(const ImpactParams& impact, double probe_mass_kg,
       RigidWallContactTime(probe_mass_kg, impact.stiffness, impact.shape_alpha, 1.0) *
       sample_rate_hz;
   if (!(samples > 0.0)) return kMaxOversample;
-  const double n = std::ceil(kTargetContactSamples / samples);
+  const double n = std::ceil(TargetContactSamples(impact.scheme) / samples);
   return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(kMaxOversample)));
 }
 
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
                                         int oversample, double onset_phase) {
-  // Only kDiscreteGradient exists so far; the result says which scheme actually ran.
-  const ContactScheme used =
-      IsContactSchemeImplemented(scheme) ? scheme : ContactScheme::kDiscreteGradient;
+  // A value outside the enumeration runs the default; the result says which scheme ran.
+  const ContactScheme used = IsContactSchemeImplemented(scheme) ? scheme : kDefaultContactScheme;
   ImpactParams params;
   params.enabled = true;
+  params.scheme = used;
   params.stiffness = k;
   params.dissipation_s_per_m = mu;
   params.shape_alpha = alpha;
@@ -425,6 +608,14 @@ ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, dou
       in_contact = false;
       result.separated = true;
       result.contact_time_s = time + crossing(-1.0) - touch_time;
+    } else if (!in_contact && !result.separated && x0 <= 0.0 && x1 <= 0.0 && xd1 < xd0 &&
+               xd1 < 0.0) {
+      // A whole contact inside one step (an under-resolved stiff impact): the force acted, but
+      // the step starts and ends apart. Its time is where the step's parabola is above 0.
+      result.separated = true;
+      const double disc = xd0 * xd0 - 2.0 * acc * x0;
+      result.contact_time_s = disc > 0.0 && acc < 0.0 ? std::sqrt(disc) / -acc * 2.0 : 0.0;
+      result.max_compression_m = std::max(result.max_compression_m, 0.0);
     }
     time += h;
   };

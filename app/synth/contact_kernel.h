@@ -24,9 +24,8 @@ namespace sas::synth {
 struct ContactKernelConfig {
   ImpactModel impact;
   FrictionModel friction;
-  // The scheme that runs (an unimplemented request is substituted, see
-  // IsContactSchemeImplemented). The sub-step solve dispatches on it: issue 4 adds its cases.
-  ContactScheme scheme = ContactScheme::kDiscreteGradient;
+  // The scheme that runs; the sub-step solve dispatches on it (contact.h describes each).
+  ContactScheme scheme = kDefaultContactScheme;
   double probe_mass_kg = 0.01;
   double period_s = 1.0 / 48000.0;
   double sub_step_s = 1.0 / 48000.0;
@@ -40,13 +39,15 @@ struct ContactKernelConfig {
 };
 
 struct ProbeDynamics {
-  bool active = false;         // false: parked (tip up), nothing computed
-  double height_m = 0.0;       // y
-  double velocity_mps = 0.0;   // dy/dt
-  double bristle_m = 0.0;      // z
-  double normal_n = 0.0;       // last F (up, on the probe)
-  double friction_n = 0.0;     // last f (on the resonator)
-  double compression_m = 0.0;  // x at the end of the last step
+  bool active = false;            // false: parked (tip up), nothing computed
+  double height_m = 0.0;          // y
+  double velocity_mps = 0.0;      // dy/dt
+  double bristle_m = 0.0;         // z
+  double normal_n = 0.0;          // last F (up, on the probe)
+  double friction_n = 0.0;        // last f (on the resonator)
+  double compression_m = 0.0;     // x at the end of the last step
+  double contact_aux = 0.0;       // the scheme's contact state (ContactStepInput::aux0)
+  double contact_energy_j = 0.0;  // energy the scheme holds in the contact (V(x), E or ψ²/2)
   int substeps_used = 0;
   bool touched = false;  // a contact force acted during the last sample
 };
@@ -105,6 +106,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.bristle_m = 0.0;
     probe.normal_n = 0.0;
     probe.friction_n = 0.0;
+    probe.contact_aux = 0.0;
+    probe.contact_energy_j = 0.0;
     probe.compression_m = drive.surface_end_m + modes.ContactDisplacement() - probe.height_m;
     probe.substeps_used = 1;
     observe(period, x_start, probe.compression_m, v0, probe.velocity_mps);
@@ -114,6 +117,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
   const int n = config.substeps;
   const double h = config.sub_step_s;
   const double inv_n = 1.0 / static_cast<double>(n);
+  const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
+  const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) / period;
   double surface = drive.surface_begin_m;
   for (int j = 0; j < n; ++j) {
     const double surface_next =
@@ -132,6 +137,11 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     in.z0 = probe.bristle_m;
     in.friction_guess_n = probe.friction_n;
     in.noise_n = drive.noise_n;
+    in.normal_guess_n = probe.normal_n;
+    in.aux0 = probe.contact_aux;
+    // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
+    // modes).
+    if (needs_rate) in.xdot0 = surface_rate + modes.ContactVelocity() - v0;
     if (impact_on) {
       in.free_dx =
           (surface_next - surface) + free_resonator - (v0 * h - 0.5 * drive.push_n / mass * h * h);
@@ -145,6 +155,15 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     in.free_du = drive.slide_velocity_mps * h - free_resonator;
     ContactStepOutput out;
     switch (config.scheme) {
+      case ContactScheme::kExplicitPassive:
+        out = SolveContactStepExplicit(config.impact, config.friction, in);
+        break;
+      case ContactScheme::kTrapezoidNewton:
+        out = SolveContactStepTrapezoid(config.impact, config.friction, in);
+        break;
+      case ContactScheme::kEnergyQuadratised:
+        out = SolveContactStepQuadratised(config.impact, config.friction, in);
+        break;
       case ContactScheme::kDiscreteGradient:
       default:
         out = SolveContactStep(config.impact, config.friction, in);
@@ -160,6 +179,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.bristle_m = in.friction_normal_n > 0.0 && friction_on ? out.z1 : 0.0;
     probe.normal_n = out.normal_n;
     probe.friction_n = out.friction_n;
+    probe.contact_aux = out.aux1;
+    probe.contact_energy_j = out.contact_energy_j;
     if (out.normal_n != 0.0 || out.friction_n != 0.0) probe.touched = true;
     surface = surface_next;
     const double x1 = surface + contact_displacement - probe.height_m;

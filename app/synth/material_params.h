@@ -28,12 +28,24 @@ struct ResonatorParams {
   std::array<ModeParams, kMaxModes> modes{};
 };
 
-// Numerical scheme for the probe/contact ODE (issue 4 measures them; DESIGN.md §3).
+// Numerical scheme for the probe/contact ODE (issue 4 measures them; DESIGN.md §3). All four
+// share the exact mode/probe maps and differ only in the contact force held over a sub-step; see
+// synth/contact.h for each method and its source.
 enum class ContactScheme : std::uint8_t {
   kExplicitPassive,    // explicit force with an energy (passivity) clamp, as in the SDT
   kTrapezoidNewton,    // trapezoidal / K-method with a safeguarded Newton solve
   kDiscreteGradient,   // energy-conserving discrete gradient (Chatziioannou & van Walstijn)
   kEnergyQuadratised,  // non-iterative IEQ/SAV (Ducceschi & Bilbao)
+};
+
+// The scheme a material gets unless its file says otherwise: the cheapest one that meets the
+// 1e-4 restitution target at 48 kHz (measured; the numbers are in synth/contact.h and README.md).
+inline constexpr ContactScheme kDefaultContactScheme = ContactScheme::kDiscreteGradient;
+
+// Update of the elasto-plastic bristle deflection z over a step (friction.md, numerical trap 1).
+enum class BristleUpdate : std::uint8_t {
+  kExponential,    // exact exponential relaxation at frozen velocity: stable for any step
+  kExplicitEuler,  // forward Euler: chatters once T |v| / |z_ss| > 2 (benchmark comparison only)
 };
 
 // Hunt–Crossley: f = -k x^α - λ x^α ẋ for x > 0, with μ = λ / k.
@@ -42,10 +54,10 @@ struct ImpactParams {
   double stiffness = 1e7;            // k, N/m^α
   double dissipation_s_per_m = 0.5;  // μ = λ / k
   double shape_alpha = 1.5;          // α
-  // Only kDiscreteGradient is implemented so far (issue 3); the others run it too until issue 4
-  // adds them (IsContactSchemeImplemented() in synth/contact.h says which are real).
-  ContactScheme scheme = ContactScheme::kDiscreteGradient;
-  int oversample = 0;  // contact sub-steps per sample; 0 = choose from N_c (see contact.h)
+  ContactScheme scheme = kDefaultContactScheme;
+  // Contact sub-steps per sample (1, 2, 4, 8, 16, ... any whole number); 0 = automatic: enough
+  // for the scheme's accuracy target at this material's samples per contact (see contact.h).
+  int oversample = 0;
 };
 
 // Elasto-plastic bristle friction: f = σ0 z + σ1 ż + σ2 v + σ3 w.
@@ -59,6 +71,7 @@ struct FrictionParams {
   double dynamic_coefficient = 0.2;    // μ_d
   double stribeck_velocity_mps = 0.1;  // v_s
   double breakaway_ratio = 0.1;        // c_ba, 0 < c_ba < 1
+  BristleUpdate bristle_update = BristleUpdate::kExponential;
 };
 
 // The stylus tip as a point mass, and the shape that rolls (roll style).

@@ -57,6 +57,11 @@ struct ModalState {
     for (int i = 0; i < count; ++i) sum += q[static_cast<std::size_t>(i)];
     return sum;
   }
+  double ContactVelocity() const {  // Σ q', the surface's velocity at the contact point
+    double sum = 0.0;
+    for (int i = 0; i < count; ++i) sum += v[static_cast<std::size_t>(i)];
+    return sum;
+  }
   double PickupVelocity() const {
     double sum = 0.0;
     for (int i = 0; i < count; ++i) {

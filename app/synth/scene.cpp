@@ -232,8 +232,8 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
       std::max(FiniteOr(m.friction.stribeck_velocity_mps, 0.1), 1e-9);
   m.friction.breakaway_ratio =
       std::clamp(FiniteOr(m.friction.breakaway_ratio, 0.1), 1e-6, 1.0 - 1e-6);
-  s.config.scheme = IsContactSchemeImplemented(m.impact.scheme) ? m.impact.scheme
-                                                                : ContactScheme::kDiscreteGradient;
+  if (!IsContactSchemeImplemented(m.impact.scheme)) m.impact.scheme = kDefaultContactScheme;
+  s.config.scheme = m.impact.scheme;
   s.config.impact.Set(m.impact);
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
@@ -275,7 +275,9 @@ double Scene::TotalEnergy() const {
     const double m = s.config.probe_mass_kg;
     const double push = s.gesture.tip_down ? s.gesture.normal_force_n : 0.0;
     e += 0.5 * m * s.probe.velocity_mps * s.probe.velocity_mps + push * s.probe.height_m;
-    if (s.config.impact.enabled) e += s.config.impact.Potential(s.probe.compression_m);
+    // The energy the scheme holds in the contact: V(x) for the discrete gradient, its own
+    // discrete (received / quadratised) energy for the others (synth/contact.h).
+    if (s.config.impact.enabled) e += s.probe.contact_energy_j;
     e += 0.5 * s.config.friction.sigma0 * s.probe.bristle_m * s.probe.bristle_m;
   }
   return e;

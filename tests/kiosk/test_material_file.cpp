@@ -9,6 +9,8 @@
 #include "kiosk/material_file.h"
 #include "sas/version.h"
 #include "support/temp_dir.h"
+#include "synth/contact.h"
+#include "synth/hunt_crossley_closed_form.h"
 
 using sas::kiosk::LoadMaterialDirectory;
 using sas::kiosk::LoadMaterialFile;
@@ -267,4 +269,50 @@ TEST_CASE("modes may also be written as [[modes]] tables, with the same checks",
   const auto at = text.find("gain = 0.5\n");
   text.erase(at, std::string("gain = 0.5\n").size());
   CHECK_THROWS_WITH(Parse(text), Catch::Contains("m.toml:22: modes[0].gain: missing key"));
+}
+
+TEST_CASE(
+    "the bristle update is an optional friction key: exponential by default, explicit_euler "
+    "on request, anything else an error naming file, line and key",
+    "[kiosk]") {
+  CHECK(Parse(kValid).params.friction.bristle_update == sas::synth::BristleUpdate::kExponential);
+  const std::string euler = "breakaway_ratio = 0.6\nbristle_update = \"explicit_euler\"\n";
+  CHECK(Parse(Edit("breakaway_ratio = 0.6\n", euler)).params.friction.bristle_update ==
+        sas::synth::BristleUpdate::kExplicitEuler);
+  const std::string bad = "breakaway_ratio = 0.6\nbristle_update = \"leapfrog\"\n";
+  CHECK_THROWS_WITH(Parse(Edit("breakaway_ratio = 0.6\n", bad)),
+                    Catch::Contains("m.toml:26: friction.bristle_update: unknown bristle update") &&
+                        Catch::Contains("exponential, explicit_euler"));
+  for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
+    INFO(material.name);
+    CHECK(material.params.friction.bristle_update == sas::synth::BristleUpdate::kExponential);
+  }
+}
+
+TEST_CASE(
+    "every shipped material runs the default contact scheme and meets 1e-4 restitution error "
+    "at 48 kHz with automatic oversampling at every one of 32 onset phases from 0.1 to 3 m/s",
+    "[kiosk]") {
+  // DESIGN.md §4, issue 4: the default configuration against the Lambert-W closed form, through
+  // the engine's own kernel, with each material's probe mass and contact parameters.
+  for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
+    const auto& impact = material.params.impact;
+    const double mass = material.params.probe.mass_kg;
+    CHECK(impact.scheme == sas::synth::kDefaultContactScheme);
+    CHECK(impact.oversample == 0);
+    for (const double v_in : {0.1, 0.3, 1.0, 3.0}) {
+      const auto exact = sas::synth::HuntCrossleyImpact(
+          mass, impact.stiffness, impact.dissipation_s_per_m, impact.shape_alpha, v_in);
+      double worst = 0.0;
+      for (int p = 0; p < 32; ++p) {
+        const auto run = sas::synth::SimulateRigidWallImpact(
+            mass, impact.stiffness, impact.dissipation_s_per_m, impact.shape_alpha, v_in, 48000.0,
+            impact.scheme, impact.oversample, (p + 0.5) / 32.0);
+        REQUIRE(run.separated);
+        worst = std::max(worst, std::fabs(run.exit_velocity_mps / exact.exit_speed_mps - 1.0));
+      }
+      INFO(material.name << " v " << v_in << " worst restitution error " << worst);
+      CHECK(worst <= 1e-4);
+    }
+  }
 }

@@ -127,3 +127,30 @@ TEST_CASE("contact time with dissipation matches the quadrature closed form with
     }
   }
 }
+
+TEST_CASE(
+    "acceptance 3 of issue 4: at k 1e10 and 1e12 (fewer than 3 samples per contact at "
+    "48 kHz) the default configuration meets 1e-3 restitution error and never gains energy",
+    "[dsp]") {
+  const ImpactParams defaults;  // the default scheme with automatic oversampling
+  REQUIRE(defaults.scheme == kDefaultContactScheme);
+  REQUIRE(defaults.oversample == 0);
+  for (const double k : {1e10, 1e12}) {
+    for (const double mu_v : {0.0, 0.1, 1.0}) {
+      const auto exact = HuntCrossleyImpact(kMass, k, mu_v, kAlpha, 1.0);
+      REQUIRE(exact.contact_time_s * kFs < 3.0);
+      double worst = 0.0;
+      for (int p = 0; p < kPhases; ++p) {
+        const auto run = SimulateRigidWallImpact(kMass, k, mu_v, kAlpha, 1.0, kFs, defaults.scheme,
+                                                 defaults.oversample, (p + 0.5) / kPhases);
+        INFO("k " << k << " mu*v " << mu_v << " phase " << p << " oversample " << run.oversample);
+        REQUIRE(run.separated);
+        const double error = std::fabs(run.exit_velocity_mps / exact.exit_speed_mps - 1.0);
+        CHECK(error <= 1e-3);
+        CHECK(run.exit_velocity_mps <= 1.0 * (1.0 + 1e-9));
+        worst = std::max(worst, error);
+      }
+      UNSCOPED_INFO("k " << k << " mu*v " << mu_v << " worst restitution error " << worst);
+    }
+  }
+}
