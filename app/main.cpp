@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     return sas::kiosk::RunRenderCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
   }
   if (command == "demo") return RunDemo(rest);
-  if (command == "kiosk") return sas::app::RunKiosk(rest, stdout, stderr);
+  if (command == "kiosk" || command == "--kiosk") return sas::app::RunKiosk(rest, stdout, stderr);
   if (command == "--list-devices") {
     PrintDeviceReport(sas::ui::ProbeDisplay());
     return EXIT_SUCCESS;

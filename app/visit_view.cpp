@@ -6,6 +6,7 @@
 
 #include "ui/overlay.h"
 #include "ui/picture_io.h"
+#include "ui/text.h"
 
 namespace sas::app {
 namespace {
@@ -93,6 +94,10 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     const int thickness = 6 + static_cast<int>(10 * breath);
     ui::AddFrame(overlays, {0, 0, width_, height_}, thickness,
                  {255, 255, 255, static_cast<std::uint8_t>(60 + 100 * breath)});
+    const int scale = std::max(2, width_ / 320);
+    const char* invite = "TOUCH THE PICTURE WITH THE PEN";
+    ui::AddText(overlays, (width_ - ui::TextWidth(invite, scale)) / 2, height_ / 2 - 4 * scale,
+                scale, invite, {255, 255, 255, static_cast<std::uint8_t>(150 + 100 * breath)});
   }
   if (session.mode() == kiosk::SessionMode::kCountdown) {
     const double left = session.SecondsLeft(now_s);
@@ -105,6 +110,10 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
   if (!message_.empty() && now_s < message_until_s_) {
     const int banner_h = std::max(24, height_ / 10);
     overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
+    const int scale = std::max(2, banner_h / 14);
+    ui::AddText(overlays, (width_ - ui::TextWidth(message_, scale)) / 2,
+                height_ - banner_h + (banner_h - 7 * scale) / 2, scale, message_,
+                {255, 255, 255, 255});
   } else {
     message_.clear();
   }
