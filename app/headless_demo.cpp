@@ -20,8 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979;
 constexpr double kPenRateHz = 200.0;  // a tablet reports at 100..1000 Hz
-constexpr double kStrokeS = 1.2;
-constexpr double kTailS = 1.5;
 
 struct Stroke {
   double x0, y0, x1, y1;  // fractions of the screen
@@ -98,7 +96,8 @@ class Visit {
 
   static kiosk::KioskEngineOptions EngineOptions(const HeadlessOptions& options) {
     kiosk::KioskEngineOptions engine;
-    engine.config.idle_timeout_s = 6.0;  // the visit ends with an idle reset: keep it short
+    engine.config.idle_timeout_s = options.quick ? 2.0 : 6.0;  // the visit ends with an idle reset
+    engine.countdown_s = options.quick ? 1.0 : 3.0;
     engine.screen_width_px = options.width_px;
     engine.screen_height_px = options.height_px;
     engine.virtual_clock = true;
@@ -151,7 +150,9 @@ class Visit {
   // One stroke with the pen, then the pen lifted for the tail. Writes <name>.wav and a snapshot
   // <name>.png at the end of the stroke (tip still down). Returns the visit.txt line.
   std::string DoStroke(const std::string& name, const Stroke& stroke,
-                       const std::function<void(double)>& midway = {}) {
+                       const std::function<void(double)>& midway = {}, double stroke_s = 0.0) {
+    const double kStrokeS = stroke_s > 0.0 ? stroke_s : options_.stroke_s();
+    const double kTailS = options_.tail_s();
     const std::size_t first = frames_rendered();
     const double t0 = now_s();
     const double w = options_.width_px, h = options_.height_px;
@@ -262,6 +263,8 @@ bool ParseHeadlessArgs(const std::vector<std::string>& args, HeadlessOptions* op
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--out" && i + 1 < args.size()) {
       options->out_dir = args[++i];
+    } else if (args[i] == "--quick") {
+      options->quick = true;
     } else if (args[i].rfind("--out=", 0) == 0) {
       options->out_dir = args[i].substr(6);
     } else {
@@ -318,17 +321,20 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     visit.Token(2);
     visit.Run(0.6);
     visit.SavePlain("token_switch_before");
-    report += visit.DoStroke("token_switch", {0.2, 0.5, 0.8, 0.5, 0.7, 0.0, {}}, [&](double) {
-      visit.Token(1);
-      visit.SetPlain(textures[1].key);  // what the screen shows after
-    });
+    report += visit.DoStroke(
+        "token_switch", {0.2, 0.5, 0.8, 0.5, 0.7, 0.0, {}},
+        [&](double) {
+          visit.Token(1);
+          visit.SetPlain(textures[1].key);  // what the screen shows after
+        },
+        1.2);  // long enough for the 0.45 s fade to end before the snapshot
 
     // The voice: record button, countdown, 2.4 s of "speech", a second press ends the take early.
     visit.SetVoice(SynthesiseVoice(visit.engine().config().sample_rate_hz, 2.4));
     visit.RecordButton(true);
     visit.Run(0.1);
     visit.RecordButton(false);
-    visit.Run(3.2);  // countdown (3 s), then the recorder is armed
+    visit.Run(options.quick ? 1.2 : 3.2);  // the countdown, then the recorder is armed
     while (visit.voice_left() > 0 &&
            visit.engine().session().mode() == kiosk::SessionMode::kRecording) {
       visit.Run(0.1);

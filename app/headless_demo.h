@@ -23,9 +23,14 @@ struct HeadlessOptions {
   int width_px = 1280;  // the simulated screen
   int height_px = 720;
   bool quiet = false;
+  // --quick (the sanitizer build's test): shorter strokes, tails, countdown and idle timeout;
+  // the same visit otherwise.
+  bool quick = false;
+  double stroke_s() const { return quick ? 0.5 : 1.2; }
+  double tail_s() const { return 1.5; }  // glass rings: it needs this long to fall silent
 };
 
-// Parses `--out DIR` (and --help). Returns false with a message in `error` on bad arguments.
+// Parses `--out DIR` and `--quick`. Returns false with a message in `error` on bad arguments.
 bool ParseHeadlessArgs(const std::vector<std::string>& args, HeadlessOptions* options,
                        std::string* error);
 

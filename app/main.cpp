@@ -68,7 +68,8 @@ int RunDefault(const Args& args) {
   std::printf("Hardware:\n");
   PrintDeviceReport(display);
   std::fflush(stdout);
-  if (display.available) return sas::app::RunKiosk(args, stdout, stderr);
+  // --out/--quick only shape the headless visit: the kiosk on a display takes its configuration.
+  if (display.available) return sas::app::RunKiosk({}, stdout, stderr);
   std::printf("No display (%s).\n", display.problem.c_str());
   return RunDemo(args);
 }
@@ -77,7 +78,9 @@ int RunDefault(const Args& args) {
 
 int main(int argc, char** argv) {
   const Args args(argv + 1, argv + argc);
-  if (args.empty() || args[0].rfind("--out", 0) == 0) return RunDefault(args);
+  if (args.empty() || args[0].rfind("--out", 0) == 0 || args[0] == "--quick") {
+    return RunDefault(args);
+  }
   const std::string& command = args[0];
   const Args rest(args.begin() + 1, args.end());
   if (command == "--help" || command == "-h" || command == "help") {

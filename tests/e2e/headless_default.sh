@@ -1,18 +1,19 @@
 #!/bin/bash
 # Acceptance 4 of issue 7: on a machine with no display, `sketch-a-scratch` with no command runs
 # the headless visit in under a minute and exits 0; headless_check then checks every output.
-# usage: headless_default.sh <sketch-a-scratch> <headless_check> [max seconds]
+# usage: headless_default.sh <sketch-a-scratch> <headless_check> [max seconds [extra options]]
 set -u
 app=$1
 check=$2
 max_s=${3:-60}
+extra=${4:-}
 work=$(mktemp -d /tmp/sas-headless-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
 # No display of any kind: the default must choose the headless visit by itself.
 unset DISPLAY WAYLAND_DISPLAY SDL_VIDEODRIVER
 start_ms=$(($(date +%s%N) / 1000000))
-"$app" --out "$work/out" >"$work/log" 2>&1
+"$app" --out "$work/out" $extra >"$work/log" 2>&1
 rc=$?
 elapsed_ms=$(($(date +%s%N) / 1000000 - start_ms))
 cat "$work/log" | grep -v '^  [a-z]* *\(found\|NOT FOUND\)'
