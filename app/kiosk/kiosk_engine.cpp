@@ -12,6 +12,7 @@
 #include "kiosk/counters_file.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
+#include "platform/log/log.h"
 #include "sas/version.h"
 #include "surface/audio_file.h"
 #include "surface/image_surface.h"
@@ -118,7 +119,10 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   if (!options_.counters_path.empty()) {
     UsageCounters counters;
     std::string error;
-    LoadCounters(options_.counters_path, texture_keys_, &counters, &error);
+    if (!LoadCounters(options_.counters_path, texture_keys_, &counters, &error)) {
+      platform::DefaultLogger().Warn("counters",
+                                     error + "; counting from zero (file left for staff)");
+    }
     session_.RestoreCounters(counters);
   }
   saved_counters_ = session_.counters();
@@ -161,8 +165,9 @@ void KioskEngine::LoadCues() {
       std::vector<float> stereo(clip.samples.size() * 2, 0.0f);
       for (std::size_t i = 0; i < clip.samples.size(); ++i) stereo[2 * i] = clip.samples[i];
       return AddClip(file, std::move(stereo));
-    } catch (const std::exception&) {
-      return -1;  // a damaged cue stays silent; the visit goes on
+    } catch (const std::exception& bad) {
+      platform::DefaultLogger().Warn("cues", std::string(bad.what()) + "; that cue stays silent");
+      return -1;  // the visit goes on
     }
   };
   for (const auto& key : texture_keys_) {
@@ -375,7 +380,7 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
   if (!options_.counters_path.empty() && session_.counters() != saved_counters_ &&
       now_s - last_counters_save_s_ >= kCountersSaveIntervalS) {
     std::string error;
-    SaveCounters(&error);
+    if (!SaveCounters(&error)) platform::DefaultLogger().Warn("counters", "not saved: " + error);
     last_counters_save_s_ = now_s;
   }
   return all;
