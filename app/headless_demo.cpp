@@ -310,13 +310,48 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
       visit.SavePlain(textures[t].key);
       int row = 0;
       for (const auto& style : styles) {
-        Stroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.7, 0.0, {}};
+        // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
+        // each style is heard on intact bubbles; popping comes next.
+        Stroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.55, 0.0, {}};
         stroke.tilt_deg = style.tilt_deg;
         stroke.style = style.style;
         report += visit.DoStroke(textures[t].key + "_" + style.name, stroke);
         ++row;
       }
     }
+    // Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).
+    {
+      int bubble_texture = -1;
+      for (std::size_t t = 0; t < textures.size(); ++t) {
+        if (textures[t].loaded.bubbles) bubble_texture = static_cast<int>(t);
+      }
+      if (bubble_texture >= 0) {
+        visit.Token(bubble_texture);
+        visit.Run(0.6);
+        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_intact");
+        const auto* state = visit.engine().bubbles();
+        // The bubble nearest the screen's centre, in screen pixels.
+        double best = 1e18, bx = 0.0, by = 0.0;
+        for (const auto& [fx, fy] : state->centres()) {
+          double sx = 0.0, sy = 0.0;
+          visit.engine().FieldToScreen(fx, fy, &sx, &sy);
+          const double d = std::hypot(sx - options.width_px / 2.0, sy - options.height_px / 2.0);
+          if (d < best) {
+            best = d;
+            bx = sx;
+            by = sy;
+          }
+        }
+        const double fx0 = bx / options.width_px, fy0 = by / options.height_px;
+        report +=
+            visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 1.0, 0.0, {}}, {}, 0.3);
+        report += "pop popped=" + std::to_string(visit.engine().popped_bubbles()) +
+                  " x=" + std::to_string(static_cast<int>(bx)) +
+                  " y=" + std::to_string(static_cast<int>(by)) + "\n";
+        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_popped");
+      }
+    }
+
     // A token switch in the middle of a stroke: the sound cross-fades, the picture too.
     visit.Token(2);
     visit.Run(0.6);

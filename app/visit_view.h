@@ -39,7 +39,13 @@ class VisitView {
   const std::string& message() const { return message_; }
 
  private:
+  // Bubble wrap: the picture with the popped bubbles flattened (issue 5, paper §5.2.2).
+  void SyncBubbles(double now_s);
+  std::shared_ptr<const ui::ImageRgba> PoppedPicture() const;
+
   const kiosk::KioskEngine* engine_;
+  int bubble_texture_ = -1;
+  int shown_popped_ = 0;
   int width_;
   int height_;
   ui::TextureView view_;

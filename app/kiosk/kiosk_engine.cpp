@@ -32,6 +32,10 @@ constexpr double kVoiceWidthMm = 0.5;
 // Impulse of a bubble's pop at strength 1 (N·s): a few tenths of a metre per second given to the
 // probe, well above a tap's landing speed, so a pop stands out from the rubbing around it.
 constexpr double kPopImpulseNs = 0.002;
+// Tip force a pen's full pressure stands for when pressing a bubble (N). The synth's mapping tops
+// out at 2 N (gesture.h: what a stroke feels), below the bubbles' 2.5 N pop force; a pen
+// saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
+constexpr double kBubblePressMaxForceN = 4.0;
 constexpr double kCountersSaveIntervalS = 10.0;
 
 double DbToLinear(double db) {
@@ -263,6 +267,14 @@ void KioskEngine::ScreenToField(double x_px, double y_px, double* fx, double* fy
   *fy = (y_px + crop_y) / scale;
 }
 
+void KioskEngine::FieldToScreen(double fx, double fy, double* x_px, double* y_px) const {
+  const auto& field = *current_field_;
+  const double sw = options_.screen_width_px, sh = options_.screen_height_px;
+  const double scale = std::max(sw / field.width(), sh / field.height());
+  *x_px = fx * scale - (field.width() * scale - sw) / 2.0;
+  *y_px = fy * scale - (field.height() * scale - sh) / 2.0;
+}
+
 const surface::BubbleWrapState* KioskEngine::bubbles() const {
   if (bubble_texture_ < 0) return nullptr;
   const auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
@@ -320,7 +332,7 @@ void KioskEngine::OnPen(const PenInput& pen) {
   if (command.tip_down && !choice.voice && choice.texture == bubble_texture_) {
     auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
     if (state) {
-      if (const auto pop = state->Press(fx, fy, command.normal_force_n)) {
+      if (const auto pop = state->Press(fx, fy, pressure * kBubblePressMaxForceN)) {
         command.burst_impulse_n_s = kPopImpulseNs * pop->strength;
         bubbles_dirty_ = true;
       }

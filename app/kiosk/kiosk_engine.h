@@ -131,6 +131,7 @@ class KioskEngine final : public platform::AudioRenderer {
   // The field under the pen now, and where screen pixel (x, y) lands on it (field samples).
   std::shared_ptr<const surface::HeightField> current_field() const { return current_field_; }
   void ScreenToField(double x_px, double y_px, double* fx, double* fy) const;
+  void FieldToScreen(double fx, double fy, double* x_px, double* y_px) const;
   const surface::BubbleWrapState* bubbles() const;
   int popped_bubbles() const;
   float mic_level() const { return recorder_ ? recorder_->Level() : 0.0f; }

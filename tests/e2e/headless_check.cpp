@@ -104,12 +104,14 @@ int main(int argc, char** argv) {
   }
   std::map<std::string, std::map<std::string, std::string>> strokes;
   std::string idle_line;
+  std::string pop_line;
   for (std::string line; std::getline(visit, line);) {
     std::istringstream in(line);
     std::string kind, name;
     in >> kind >> name;
     if (kind == "stroke") strokes[name] = Fields(line);
     if (kind == "idle_reset") idle_line = line;
+    if (kind == "pop") pop_line = line;
   }
   const std::vector<std::string> textures = {"bubble_wrap", "broken_glass", "wooden_board",
                                              "cracked_ground"};
@@ -117,6 +119,7 @@ int main(int argc, char** argv) {
   for (const auto& t : textures) {
     for (const char* style : {"scrape", "rub", "roll"}) expected.push_back(t + "_" + style);
   }
+  expected.push_back("bubble_wrap_pop");
   expected.push_back("token_switch");
   expected.push_back("voice_scrape");
   for (const auto& name : expected) {
@@ -175,6 +178,26 @@ int main(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     Fail(std::string("voice surface: ") + e.what());
+  }
+  // A firm press popped the bubble under the pen: the picture shows it flattened afterwards.
+  {
+    auto f = Fields(pop_line);
+    if (f["popped"].empty() || std::stoi(f["popped"]) < 1) {
+      Fail("the firm press popped no bubble");
+    } else {
+      try {
+        const auto popped = sas::ui::LoadPicture(dir + "/bubble_wrap_popped.png");
+        const auto intact = sas::ui::LoadPicture(dir + "/bubble_wrap_intact.png");
+        double near_mean = 0, far_mean = 0;
+        Differences(popped, intact, std::stoi(f["x"]), std::stoi(f["y"]), &near_mean, &far_mean);
+        std::printf("pop: %s bubble(s), picture near %.1f far %.2f\n", f["popped"].c_str(),
+                    near_mean, far_mean);
+        if (near_mean < 4.0) Fail("the popped bubble does not show in the picture");
+        if (far_mean > 1.0) Fail("the pop changed the picture far from the bubble");
+      } catch (const std::exception& e) {
+        Fail(std::string("pop: ") + e.what());
+      }
+    }
   }
   if (idle_line.find("voice_wiped=yes") == std::string::npos)
     Fail("idle reset did not wipe the voice");
