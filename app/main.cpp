@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "headless_demo.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/render_command.h"
+#include "live_kiosk.h"
 #include "platform/discovery.h"
 #include "sas/version.h"
 #include "ui/display_probe.h"
@@ -17,10 +19,24 @@ namespace {
 
 using Args = std::vector<std::string>;
 
+int RunDemo(const Args& args) {
+  sas::app::HeadlessOptions options;
+  std::string error;
+  if (!sas::app::ParseHeadlessArgs(args, &options, &error)) {
+    std::fprintf(stderr, "sketch-a-scratch: %s\n", error.c_str());
+    return 2;
+  }
+  return sas::app::RunHeadlessDemo(options, stdout, stderr);
+}
+
 void PrintUsage() {
   std::printf(
       "usage: sketch-a-scratch [command] [options]\n"
-      "  (no command)     start the kiosk; headless default when there is no display\n"
+      "  (no command) [--out DIR]\n"
+      "                   start the kiosk; with no display, the headless default: a scripted\n"
+      "                   visit written as WAVs and PNGs to DIR (default sketch-a-scratch-demo)\n"
+      "  demo [--out DIR] the headless visit even when there is a display\n"
+      "  kiosk [--config FILE]  the kiosk (fails when there is no display)\n"
       "  render ...       render a material, surface and gesture to a 2-channel WAV\n"
       "                   (sketch-a-scratch render --help)\n"
       "  impact ...       simulate one probe impact on a rigid wall, print JSON vs closed form\n"
@@ -46,27 +62,29 @@ void PrintDeviceReport(const sas::ui::DisplayInfo& display) {
   }
 }
 
-int RunDefault() {
+// No command: the kiosk on the display, or the headless visit when there is none. With a display
+// the kiosk always runs (silent without an audio device): never the demo on the box.
+int RunDefault(const Args& args) {
   std::printf("Sketch-a-Scratch %s\n", sas::kVersion);
   const auto display = sas::ui::ProbeDisplay();
   std::printf("Hardware:\n");
   PrintDeviceReport(display);
-  if (!display.available) {
-    std::printf(
-        "No display: running the headless default (hardware report only in this "
-        "version).\n");
-  } else {
-    std::printf("Display found; the full-screen kiosk is not built yet in this version.\n");
-  }
-  return EXIT_SUCCESS;
+  std::fflush(stdout);
+  // --out/--quick only shape the headless visit: the kiosk on a display takes its configuration.
+  if (display.available) return sas::app::RunKiosk({}, stdout, stderr);
+  std::printf("No display (%s).\n", display.problem.c_str());
+  return RunDemo(args);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Args args(argv + 1, argv + argc);
-  if (args.empty()) return RunDefault();
+  if (args.empty() || args[0].rfind("--out", 0) == 0 || args[0] == "--quick") {
+    return RunDefault(args);
+  }
   const std::string& command = args[0];
+  const Args rest(args.begin() + 1, args.end());
   if (command == "--help" || command == "-h" || command == "help") {
     PrintUsage();
     return EXIT_SUCCESS;
@@ -76,11 +94,11 @@ int main(int argc, char** argv) {
     return EXIT_SUCCESS;
   }
   if (command == "render") {
-    return sas::kiosk::RunRenderCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
+    return sas::kiosk::RunRenderCommand(rest, stdout, stderr);
   }
-  if (command == "impact") {
-    return sas::kiosk::RunImpactCommand(Args(args.begin() + 1, args.end()), stdout, stderr);
-  }
+  if (command == "impact") return sas::kiosk::RunImpactCommand(rest, stdout, stderr);
+  if (command == "demo") return RunDemo(rest);
+  if (command == "kiosk" || command == "--kiosk") return sas::app::RunKiosk(rest, stdout, stderr);
   if (command == "--list-devices") {
     PrintDeviceReport(sas::ui::ProbeDisplay());
     return EXIT_SUCCESS;

@@ -168,7 +168,10 @@ bool OfflineAudioOutput::Start() {
 }
 
 void OfflineAudioOutput::RenderBlocks(int blocks) {
-  buffer_.reserve(buffer_.size() + block_.size() * static_cast<std::size_t>(blocks));
+  // Geometric growth: callers render one block at a time (the headless visit interleaves input),
+  // and an exact reserve per call would copy the whole buffer every block.
+  const std::size_t needed = buffer_.size() + block_.size() * static_cast<std::size_t>(blocks);
+  if (needed > buffer_.capacity()) buffer_.reserve(std::max(needed, 2 * buffer_.capacity()));
   for (int b = 0; b < blocks; ++b) {
     core_.Run(block_.data(), config_.frames_per_buffer, config_.channels, false);
     buffer_.insert(buffer_.end(), block_.begin(), block_.end());

@@ -23,6 +23,13 @@ void VoiceRecorder::Stop() {
   recording_.store(false, std::memory_order_release);
 }
 
+void VoiceRecorder::Wipe() {
+  recording_.store(false, std::memory_order_release);
+  std::fill(buffer_.get(), buffer_.get() + capacity_, 0.0f);
+  count_.store(0, std::memory_order_release);
+  level_.store(0.0f, std::memory_order_relaxed);
+}
+
 void VoiceRecorder::Push(const float* mono, int frames) noexcept {
   PushInterleaved(mono, frames, 1);
 }

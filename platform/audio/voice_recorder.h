@@ -41,6 +41,9 @@ class VoiceRecorder {
   bool Recording() const { return recording_.load(std::memory_order_acquire); }
   // Copies out the take recorded so far (call after Stop or when Recording() went false).
   VoiceTake Take() const;
+  // Stops and overwrites the whole buffer with zeros: a visitor's voice leaves no trace in RAM
+  // once the kiosk has turned it into a surface or the idle reset wiped it (issue 7).
+  void Wipe();
   // The UI's level meter, linear 0..1.
   float Level() const { return level_.load(std::memory_order_relaxed); }
   std::size_t Capacity() const { return capacity_; }

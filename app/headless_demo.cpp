@@ -1,0 +1,425 @@
+// The headless default: a scripted visit through the kiosk engine (see headless_demo.h).
+#include "headless_demo.h"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <optional>
+
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_input.h"
+#include "platform/audio/audio_output.h"
+#include "sas/version.h"
+#include "surface/wav_writer.h"
+#include "ui/picture_io.h"
+#include "visit_view.h"
+
+namespace sas::app {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979;
+constexpr double kPenRateHz = 200.0;  // a tablet reports at 100..1000 Hz
+
+struct Stroke {
+  double x0, y0, x1, y1;  // fractions of the screen
+  double pressure = 0.7;
+  double tilt_deg = 0.0;
+  std::optional<synth::ProbeStyle> style;
+};
+
+// A voice-like test signal (no microphone on a bare machine): a glottal pulse train whose pitch
+// glides around 120 Hz, through three cascaded formant resonators (the vowels /a/, /i/, /u/ of
+// Peterson & Barney 1952), one vowel per syllable with a raised-cosine syllable envelope.
+std::vector<float> SynthesiseVoice(double fs_hz, double duration_s) {
+  struct Vowel {
+    double f[3];
+    double b[3];
+  };
+  const Vowel vowels[3] = {{{730, 1090, 2440}, {90, 110, 170}},
+                           {{270, 2290, 3010}, {60, 100, 170}},
+                           {{300, 870, 2240}, {60, 90, 170}}};
+  const auto n = static_cast<std::size_t>(duration_s * fs_hz);
+  std::vector<float> out(n, 0.0f);
+  double phase = 0.0;
+  double state[3][2] = {};
+  const double syllable_s = duration_s / 3.0;
+  double peak = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / fs_hz;
+    const double f0 = 120.0 + 30.0 * std::sin(2.0 * kPi * 0.8 * t);
+    phase += f0 / fs_hz;
+    double x = 0.0;
+    if (phase >= 1.0) {
+      phase -= 1.0;
+      x = 1.0;  // one glottal pulse per period
+    }
+    const int syllable = std::min(2, static_cast<int>(t / syllable_s));
+    const Vowel& v = vowels[syllable];
+    for (int k = 0; k < 3; ++k) {
+      const double r = std::exp(-kPi * v.b[k] / fs_hz);
+      const double a1 = 2.0 * r * std::cos(2.0 * kPi * v.f[k] / fs_hz);
+      const double a2 = -r * r;
+      const double y = (1.0 - r) * x + a1 * state[k][0] + a2 * state[k][1];
+      state[k][1] = state[k][0];
+      state[k][0] = y;
+      x = y;
+    }
+    const double u = std::fmod(t, syllable_s) / syllable_s;  // 0..1 in the syllable
+    const double envelope = u < 0.85 ? std::pow(std::sin(kPi * u / 0.85), 2.0) : 0.0;
+    out[i] = static_cast<float>(x * envelope);
+    peak = std::max(peak, std::abs(x * envelope));
+  }
+  if (peak > 0.0) {
+    for (auto& s : out)
+      s = static_cast<float>(s * 0.5 / peak);  // -6 dBFS: neither quiet nor clipped
+  }
+  return out;
+}
+
+class Visit {
+ public:
+  Visit(const HeadlessOptions& options, std::FILE* out)
+      : options_(options),
+        out_(out),
+        mic_(RecorderConfig(kiosk::KioskConfig{})),
+        engine_(EngineOptions(options)),
+        view_(engine_, options.width_px, options.height_px),
+        output_(engine_, OutputConfig(engine_.config())) {
+    engine_.SetRecorder(&mic_.recorder());
+    mic_.Start();
+    output_.Start();
+    engine_.SetAudioRunning(true);
+    fs_hz_ = engine_.config().sample_rate_hz;
+    block_frames_ = OutputConfig(engine_.config()).frames_per_buffer;
+  }
+
+  static kiosk::KioskEngineOptions EngineOptions(const HeadlessOptions& options) {
+    kiosk::KioskEngineOptions engine;
+    engine.config.idle_timeout_s = options.quick ? 2.0 : 6.0;  // the visit ends with an idle reset
+    engine.countdown_s = options.quick ? 1.0 : 3.0;
+    engine.screen_width_px = options.width_px;
+    engine.screen_height_px = options.height_px;
+    engine.virtual_clock = true;
+    return engine;
+  }
+  static platform::VoiceRecorderConfig RecorderConfig(const kiosk::KioskConfig& config) {
+    platform::VoiceRecorderConfig recorder;
+    recorder.sample_rate_hz = config.sample_rate_hz;
+    recorder.max_duration_s = config.record_max_duration_s;
+    recorder.clip_level = static_cast<float>(config.record_clip_level);
+    recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
+    return recorder;
+  }
+  static platform::AudioOutputConfig OutputConfig(const kiosk::KioskConfig& config) {
+    platform::AudioOutputConfig audio;
+    audio.sample_rate_hz = config.sample_rate_hz;
+    audio.frames_per_buffer = config.buffer_frames;
+    return audio;
+  }
+
+  double now_s() const { return static_cast<double>(now_ns_) * 1e-9; }
+  std::size_t frames_rendered() const { return output_.buffer().size() / 2; }
+
+  // Runs `seconds` of the visit, block by block: pen events due before each block go to the
+  // engine (and the view), the engine ticks, the offline device renders one callback.
+  void Run(double seconds, const std::function<std::optional<kiosk::PenInput>(double)>& pen = {}) {
+    const auto block_ns = static_cast<std::int64_t>(std::llround(block_frames_ * 1e9 / fs_hz_));
+    const std::int64_t end_ns = now_ns_ + static_cast<std::int64_t>(seconds * 1e9);
+    while (now_ns_ < end_ns) {
+      if (pen) {
+        while (next_pen_ns_ < now_ns_) {
+          if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
+            sample->time_ns = next_pen_ns_;
+            engine_.OnPen(*sample);
+            view_.OnStylus(ToStylus(*sample));
+          }
+          next_pen_ns_ += static_cast<std::int64_t>(1e9 / kPenRateHz);
+        }
+      } else {
+        next_pen_ns_ = now_ns_;
+      }
+      view_.Apply(engine_.Tick(now_ns_), now_s());
+      FeedMicrophone();
+      view_.Advance(now_s(), false);
+      output_.RenderBlocks(1);
+      now_ns_ += block_ns;
+    }
+  }
+
+  // One stroke with the pen, then the pen lifted for the tail. Writes <name>.wav and a snapshot
+  // <name>.png at the end of the stroke (tip still down). Returns the visit.txt line.
+  std::string DoStroke(const std::string& name, const Stroke& stroke,
+                       const std::function<void(double)>& midway = {}, double stroke_s = 0.0) {
+    const double kStrokeS = stroke_s > 0.0 ? stroke_s : options_.stroke_s();
+    const double kTailS = options_.tail_s();
+    const std::size_t first = frames_rendered();
+    const double t0 = now_s();
+    const double w = options_.width_px, h = options_.height_px;
+    bool midway_done = false;
+    const auto pen = [&](double t) -> std::optional<kiosk::PenInput> {
+      const double u = (t - t0) / kStrokeS;
+      kiosk::PenInput sample;
+      sample.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * std::clamp(u, 0.0, 1.0)) * w;
+      sample.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * std::clamp(u, 0.0, 1.0)) * h;
+      sample.tip_down = u < 1.0;
+      sample.pressure = sample.tip_down ? stroke.pressure : 0.0;
+      sample.tilt_deg = stroke.tilt_deg;
+      sample.has_tilt = true;
+      sample.style = stroke.style;
+      return sample;
+    };
+    Run(kStrokeS * 0.5, pen);
+    if (midway) {
+      midway(now_s());
+      midway_done = true;
+    }
+    Run(kStrokeS * 0.5 - 0.02, pen);  // the snapshot while the tip is still down and moving
+    view_.Advance(now_s(), false);
+    ui::ImageRgba frame;
+    ui::ComposeFrame(view_.view().TakeFrame(), frame);
+    const std::string png = name + ".png";
+    ui::SavePng(frame, (fs::path(options_.out_dir) / png).string());
+    const double x_end = stroke.x1 * w, y_end = stroke.y1 * h;
+    Run(0.02 + 0.1, pen);  // lifted
+    Run(kTailS - 0.1);
+    const std::size_t last = frames_rendered();
+    const std::string wav = name + ".wav";
+    surface::WriteWav((fs::path(options_.out_dir) / wav).string(),
+                      output_.buffer().data() + first * 2, last - first, 2,
+                      static_cast<int>(fs_hz_));
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "stroke %s wav=%s png=%s plain=%s x=%.0f y=%.0f down_s=%.3f tail_s=%.3f%s\n",
+                  name.c_str(), wav.c_str(), png.c_str(), plain_.c_str(), x_end, y_end, kStrokeS,
+                  kTailS, midway_done ? " token_switch=mid" : "");
+    if (!options_.quiet)
+      std::fprintf(out_, "  %-28s %s, %s\n", name.c_str(), wav.c_str(), png.c_str());
+    return line;
+  }
+
+  // The undeformed picture now on screen, as <name>.png (the reference for the snapshots).
+  void SavePlain(const std::string& name) {
+    view_.Advance(now_s(), false);
+    plain_ = name + ".png";
+    ui::SavePng(*view_.current_picture(), (fs::path(options_.out_dir) / plain_).string());
+  }
+
+  void SetPlain(const std::string& name) { plain_ = name + ".png"; }
+  void Token(int texture) { engine_.OnToken(now_ns_, texture); }
+  void RecordButton(bool pressed) { engine_.OnRecordButton(now_ns_, pressed); }
+  void SetVoice(std::vector<float> voice) {
+    voice_ = std::move(voice);
+    voice_pos_ = 0;
+  }
+  kiosk::KioskEngine& engine() { return engine_; }
+  VisitView& view() { return view_; }
+  std::size_t voice_left() const { return voice_.size() - voice_pos_; }
+  void ClearAudio() { output_.ClearBuffer(); }
+
+ private:
+  static ui::StylusSample ToStylus(const kiosk::PenInput& pen) {
+    ui::StylusSample s;
+    s.time_ns = pen.time_ns;
+    s.x_px = static_cast<float>(pen.x_px);
+    s.y_px = static_cast<float>(pen.y_px);
+    s.pressure = static_cast<float>(pen.pressure);
+    s.tip_down = pen.tip_down;
+    s.tilt_x_deg = static_cast<float>(pen.tilt_deg);
+    s.source = ui::StylusSource::kPen;
+    return s;
+  }
+
+  // The microphone: while the recorder is armed, one block of the voice per audio block.
+  void FeedMicrophone() {
+    if (!mic_.recorder().Recording()) return;
+    const std::size_t n =
+        std::min<std::size_t>(static_cast<std::size_t>(block_frames_), voice_left());
+    std::vector<float> block(static_cast<std::size_t>(block_frames_), 0.0f);  // room tone: silence
+    std::copy_n(voice_.begin() + static_cast<std::ptrdiff_t>(voice_pos_), n, block.begin());
+    voice_pos_ += n;
+    mic_.Feed(block.data(), block.size());
+  }
+
+  HeadlessOptions options_;
+  std::FILE* out_;
+  platform::FakeAudioInput mic_;  // before the engine: it holds a pointer to the recorder
+  kiosk::KioskEngine engine_;
+  VisitView view_;
+  platform::OfflineAudioOutput output_;
+  double fs_hz_ = 48000.0;
+  int block_frames_ = 128;
+  std::int64_t now_ns_ = 0;
+  std::int64_t next_pen_ns_ = 0;
+  std::vector<float> voice_;
+  std::size_t voice_pos_ = 0;
+  std::string plain_;
+};
+
+}  // namespace
+
+bool ParseHeadlessArgs(const std::vector<std::string>& args, HeadlessOptions* options,
+                       std::string* error) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--out" && i + 1 < args.size()) {
+      options->out_dir = args[++i];
+    } else if (args[i] == "--quick") {
+      options->quick = true;
+    } else if (args[i].rfind("--out=", 0) == 0) {
+      options->out_dir = args[i].substr(6);
+    } else {
+      *error = "unknown or incomplete option \"" + args[i] + "\" (headless: --out DIR)";
+      return false;
+    }
+  }
+  if (options->out_dir.empty()) {
+    *error = "--out needs a folder";
+    return false;
+  }
+  return true;
+}
+
+int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* err) {
+  try {
+    std::error_code error;
+    fs::create_directories(options.out_dir, error);
+    if (error) {
+      std::fprintf(err, "sketch-a-scratch: cannot create %s: %s\n", options.out_dir.c_str(),
+                   error.message().c_str());
+      return 1;
+    }
+    const std::string out_dir = fs::absolute(options.out_dir).string();
+    std::fprintf(out, "Headless default: a scripted visit (no display), writing to %s\n",
+                 out_dir.c_str());
+    Visit visit(options, out);
+    std::string report = "# sketch-a-scratch " + std::string(kVersion) +
+                         " headless visit: one line per stroke (screen " +
+                         std::to_string(options.width_px) + "x" +
+                         std::to_string(options.height_px) + " px)\n";
+    const struct {
+      const char* name;
+      double tilt_deg;
+      std::optional<synth::ProbeStyle> style;
+    } styles[] = {{"scrape", 0.0, synth::ProbeStyle::kScrape},
+                  {"rub", 55.0, synth::ProbeStyle::kRub},
+                  {"roll", 0.0, synth::ProbeStyle::kRoll}};
+    const auto& textures = visit.engine().textures();
+    for (std::size_t t = 0; t < textures.size(); ++t) {
+      visit.Token(static_cast<int>(t));  // a token on switch t: name cue, cross-fade
+      visit.Run(0.6);
+      visit.SavePlain(textures[t].key);
+      int row = 0;
+      for (const auto& style : styles) {
+        // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
+        // each style is heard on intact bubbles; popping comes next.
+        Stroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.55, 0.0, {}};
+        stroke.tilt_deg = style.tilt_deg;
+        stroke.style = style.style;
+        report += visit.DoStroke(textures[t].key + "_" + style.name, stroke);
+        ++row;
+      }
+    }
+    // Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).
+    {
+      int bubble_texture = -1;
+      for (std::size_t t = 0; t < textures.size(); ++t) {
+        if (textures[t].loaded.bubbles) bubble_texture = static_cast<int>(t);
+      }
+      if (bubble_texture >= 0) {
+        visit.Token(bubble_texture);
+        visit.Run(0.6);
+        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_intact");
+        const auto* state = visit.engine().bubbles();
+        // The bubble nearest the screen's centre, in screen pixels.
+        double best = 1e18, bx = 0.0, by = 0.0;
+        for (const auto& [fx, fy] : state->centres()) {
+          double sx = 0.0, sy = 0.0;
+          visit.engine().FieldToScreen(fx, fy, &sx, &sy);
+          const double d = std::hypot(sx - options.width_px / 2.0, sy - options.height_px / 2.0);
+          if (d < best) {
+            best = d;
+            bx = sx;
+            by = sy;
+          }
+        }
+        const double fx0 = bx / options.width_px, fy0 = by / options.height_px;
+        report +=
+            visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 1.0, 0.0, {}}, {}, 0.3);
+        report += "pop popped=" + std::to_string(visit.engine().popped_bubbles()) +
+                  " x=" + std::to_string(static_cast<int>(bx)) +
+                  " y=" + std::to_string(static_cast<int>(by)) + "\n";
+        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_popped");
+      }
+    }
+
+    // A token switch in the middle of a stroke: the sound cross-fades, the picture too.
+    visit.Token(2);
+    visit.Run(0.6);
+    visit.SavePlain("token_switch_before");
+    report += visit.DoStroke(
+        "token_switch", {0.2, 0.5, 0.8, 0.5, 0.7, 0.0, {}},
+        [&](double) {
+          visit.Token(1);
+          visit.SetPlain(textures[1].key);  // what the screen shows after
+        },
+        1.2);  // long enough for the 0.45 s fade to end before the snapshot
+
+    // The voice: record button, countdown, 2.4 s of "speech", a second press ends the take early.
+    visit.SetVoice(SynthesiseVoice(visit.engine().config().sample_rate_hz, 2.4));
+    visit.RecordButton(true);
+    visit.Run(0.1);
+    visit.RecordButton(false);
+    visit.Run(options.quick ? 1.2 : 3.2);  // the countdown, then the recorder is armed
+    while (visit.voice_left() > 0 &&
+           visit.engine().session().mode() == kiosk::SessionMode::kRecording) {
+      visit.Run(0.1);
+    }
+    visit.RecordButton(true);
+    visit.Run(0.05);
+    visit.RecordButton(false);
+    visit.Run(0.6);
+    if (!visit.engine().has_voice()) {
+      std::fprintf(err, "sketch-a-scratch: the voice recording did not become a surface (%s)\n",
+                   visit.view().message().c_str());
+      return 1;
+    }
+    visit.SavePlain("voice_surface");
+    report += visit.DoStroke("voice_scrape", {0.15, 0.4, 0.85, 0.45, 0.7, 0.0, {}});
+
+    // Nobody touches it: the idle reset wipes the voice and shows the default texture.
+    visit.ClearAudio();
+    visit.Run(visit.engine().config().idle_timeout_s + 0.5);
+    const bool wiped = !visit.engine().has_voice() && visit.engine().voice_image() == nullptr;
+    report += std::string("idle_reset voice_wiped=") + (wiped ? "yes" : "no") +
+              " attract=" + (visit.view().attract() ? "yes" : "no") + "\n";
+    visit.SavePlain("idle_reset");
+    {
+      std::FILE* file = std::fopen((fs::path(out_dir) / "visit.txt").c_str(), "w");
+      if (file == nullptr) {
+        std::fprintf(err, "sketch-a-scratch: cannot write visit.txt in %s\n", out_dir.c_str());
+        return 1;
+      }
+      std::fputs(report.c_str(), file);
+      std::fclose(file);
+    }
+    if (!wiped) {
+      std::fprintf(err, "sketch-a-scratch: the idle reset did not wipe the voice\n");
+      return 1;
+    }
+    const auto stats = visit.engine().audio_stats();
+    std::fprintf(out,
+                 "Done: %llu probe commands, %llu scene switches, pen-to-sound delay %.2f ms "
+                 "(one %d-frame buffer). Listen to the WAVs (ch 1 sound, ch 2 vibration) and look "
+                 "at the PNGs in %s (visit.txt lists them).\n",
+                 static_cast<unsigned long long>(stats.commands),
+                 static_cast<unsigned long long>(stats.switches),
+                 static_cast<double>(stats.pen_to_sample_max_ns) * 1e-6,
+                 visit.engine().config().buffer_frames, out_dir.c_str());
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(err, "sketch-a-scratch: headless visit failed: %s\n", error.what());
+    return 1;
+  }
+}
+
+}  // namespace sas::app

@@ -1,0 +1,40 @@
+#pragma once
+// The headless default (issue 7): on a machine with no display, `sketch-a-scratch` runs a
+// scripted visit through the same KioskEngine and VisitView the kiosk uses, with the platform's
+// offline audio loop in place of the sound card and a virtual clock in place of real time:
+//   each of the four textures chosen by a token, then stroked once in each style (scrape: pen
+//   upright; rub: pen tilted; roll), a token switch in the middle of a stroke (the sound
+//   cross-fades), and a synthesised voice (a vowel-like glottal pulse train through formant
+//   resonators, with syllables) recorded through the record-button flow, turned into a surface
+//   and scratched; then the idle reset wipes it.
+// Outputs, in the output folder: one 2-channel WAV per stroke (ch 1 sound, ch 2 haptic; the
+// stroke and 1.5 s after the pen is lifted), a PNG snapshot per stroke taken with the tip still
+// down (the dent visible), the plain pictures, and visit.txt saying what each file shows and where
+// the strokes were. Exits 0 when everything was written.
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace sas::app {
+
+struct HeadlessOptions {
+  std::string out_dir = "sketch-a-scratch-demo";
+  int width_px = 1280;  // the simulated screen
+  int height_px = 720;
+  bool quiet = false;
+  // --quick (the sanitizer build's test): shorter strokes, tails, countdown and idle timeout;
+  // the same visit otherwise.
+  bool quick = false;
+  double stroke_s() const { return quick ? 0.5 : 1.2; }
+  double tail_s() const { return 1.5; }  // glass rings: it needs this long to fall silent
+};
+
+// Parses `--out DIR` and `--quick`. Returns false with a message in `error` on bad arguments.
+bool ParseHeadlessArgs(const std::vector<std::string>& args, HeadlessOptions* options,
+                       std::string* error);
+
+// Runs the visit; returns the process exit code (0 ok, 1 failure). Never throws.
+int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* err);
+
+}  // namespace sas::app

@@ -1,0 +1,705 @@
+// The kiosk engine (see kiosk_engine.h): textures, scenes, session, voice slot and counters, the
+// pen -> ProbeCommand mapping and the audio callback's render.
+#include "kiosk/kiosk_engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "kiosk/builtin_profiles.h"
+#include "kiosk/counters_file.h"
+#include "kiosk/render_command.h"
+#include "platform/common/clock.h"
+#include "platform/log/log.h"
+#include "sas/version.h"
+#include "surface/audio_file.h"
+#include "surface/image_surface.h"
+#include "surface/sound_image.h"
+
+namespace sas::kiosk {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Token order: the paper's §5.2 order of the four textures.
+const std::vector<std::string> kTextureKeys = {"bubble_wrap", "broken_glass", "wooden_board",
+                                               "cracked_ground"};
+constexpr const char* kVoiceMaterial = "plastic";
+constexpr double kVoiceReliefMm = 0.5;
+constexpr double kVoiceWidthMm = 0.5;
+// Impulse of a bubble's pop at strength 1 (N·s): a few tenths of a metre per second given to the
+// probe, well above a tap's landing speed, so a pop stands out from the rubbing around it.
+constexpr double kPopImpulseNs = 0.002;
+// Tip force a pen's full pressure stands for when pressing a bubble (N). The synth's mapping tops
+// out at 2 N (gesture.h: what a stroke feels), below the bubbles' 2.5 N pop force; a pen
+// saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
+constexpr double kBubblePressMaxForceN = 4.0;
+constexpr double kCountersSaveIntervalS = 10.0;
+
+double DbToLinear(double db) {
+  return std::pow(10.0, db / 20.0);
+}
+
+std::vector<std::string> DataDirs(const std::string& sub) {
+  std::vector<std::string> dirs;
+  if (const char* data = std::getenv("SAS_DATA_DIR"); data != nullptr && *data) {
+    dirs.push_back((fs::path(data) / sub).string());
+  }
+  dirs.push_back((fs::path(kSourceDir) / "textures" / (sub == "textures" ? "" : sub)).string());
+  dirs.push_back((fs::path(kInstallPrefix) / "share" / "sketch-a-scratch" / sub).string());
+  return dirs;
+}
+
+}  // namespace
+
+std::vector<std::string> FindTextureFiles() {
+  std::string searched;
+  for (const auto& dir : DataDirs("textures")) {
+    std::vector<std::string> files;
+    for (const auto& key : kTextureKeys) {
+      const fs::path file = fs::path(dir) / key / "texture.toml";
+      std::error_code error;
+      if (fs::is_regular_file(file, error)) files.push_back(file.string());
+    }
+    if (files.size() == kTextureKeys.size()) return files;
+    searched += (searched.empty() ? "" : ", ") + dir;
+  }
+  throw std::runtime_error("the four kiosk textures were not found (searched " + searched + ")");
+}
+
+std::string FindCuesDir() {
+  std::vector<std::string> dirs = DataDirs("cues");
+  // The build generates the cues in its own tree (<build>/textures/cues, the binary being
+  // <build>/app/sketch-a-scratch).
+  std::error_code exe_error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", exe_error);
+  if (!exe_error) dirs.push_back((exe.parent_path().parent_path() / "textures" / "cues").string());
+  for (const auto& dir : dirs) {
+    std::error_code error;
+    if (fs::is_directory(dir, error)) return dir;
+  }
+  return {};
+}
+
+KioskEngine::KioskEngine(KioskEngineOptions options)
+    : options_(std::move(options)),
+      session_(SessionConfig{}),
+      block_commands_(512),
+      scratch_a_(static_cast<std::size_t>(std::max(1, options_.max_block_frames)) * 2),
+      scratch_b_(scratch_a_.size()) {
+  if (options_.texture_paths.empty()) options_.texture_paths = FindTextureFiles();
+  const auto dirs = MaterialSearchDirs(options_.materials_dir);
+  surface::TextureLoadOptions load;
+  load.pixel_pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
+  auto loaded = surface::LoadTextures(options_.texture_paths, load);
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    EngineTexture texture;
+    texture.key = fs::path(options_.texture_paths[i]).parent_path().filename().string();
+    texture.material = FindMaterial(loaded[i].file.material, dirs);
+    texture.loaded = std::move(loaded[i]);
+    if (texture.loaded.bubbles) bubble_texture_ = static_cast<int>(i);
+    texture_keys_.push_back(texture.key);
+    textures_.push_back(std::move(texture));
+  }
+  try {
+    voice_material_ = FindMaterial(kVoiceMaterial, dirs);
+  } catch (const std::exception&) {
+    voice_material_ = textures_.front().material;
+  }
+  const auto found =
+      std::find(texture_keys_.begin(), texture_keys_.end(), options_.config.default_texture);
+  default_texture_ =
+      found == texture_keys_.end() ? 0 : static_cast<int>(found - texture_keys_.begin());
+
+  SessionConfig session;
+  session.texture_count = static_cast<int>(textures_.size());
+  session.default_texture = default_texture_;
+  session.idle_timeout_s = options_.config.idle_timeout_s;
+  session.countdown_s = options_.countdown_s;
+  session.record_max_s = options_.config.record_max_duration_s;
+  session_ = Session(session);
+  if (!options_.counters_path.empty()) {
+    UsageCounters counters;
+    std::string error;
+    if (!LoadCounters(options_.counters_path, texture_keys_, &counters, &error)) {
+      platform::DefaultLogger().Warn("counters",
+                                     error + "; counting from zero (file left for staff)");
+    }
+    session_.RestoreCounters(counters);
+  }
+  saved_counters_ = session_.counters();
+
+  cues_dir_ = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
+  LoadCues();
+  fade_len_ = std::max(
+      1, static_cast<int>(std::lround(options_.cross_fade_s * options_.config.sample_rate_hz)));
+  for (auto& slot : slots_) slot.scene.Init(options_.config.sample_rate_hz);
+  ShowSurface({false, default_texture_});
+  SetAudioRunning(false);  // no callback yet: take the first switch here
+}
+
+KioskEngine::~KioskEngine() {
+  std::string error;
+  SaveCounters(&error);
+  recorder_ = nullptr;  // may already be gone: its owner wipes it
+  WipeVoice();
+}
+
+// ---------------------------------------------------------------------------- cues and clips
+
+int KioskEngine::AddClip(std::string name, std::vector<float> stereo) {
+  clips_.push_back({std::move(stereo), std::move(name)});
+  return static_cast<int>(clips_.size()) - 1;
+}
+
+void KioskEngine::LoadCues() {
+  const double fs_hz = options_.config.sample_rate_hz;
+  const auto load = [&](const std::string& file) -> int {
+    if (cues_dir_.empty()) return -1;
+    const fs::path path = fs::path(cues_dir_) / file;
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) return -1;
+    try {
+      surface::AudioReadLimits limits;
+      limits.target_rate_hz = fs_hz;
+      limits.max_duration_s = 30.0;
+      const auto clip = surface::ReadAudioFile(path.string(), limits);
+      std::vector<float> stereo(clip.samples.size() * 2, 0.0f);
+      for (std::size_t i = 0; i < clip.samples.size(); ++i) stereo[2 * i] = clip.samples[i];
+      return AddClip(file, std::move(stereo));
+    } catch (const std::exception& bad) {
+      platform::DefaultLogger().Warn("cues", std::string(bad.what()) + "; that cue stays silent");
+      return -1;  // the visit goes on
+    }
+  };
+  for (const auto& key : texture_keys_) {
+    name_cues_.push_back(load(key + "_name.wav"));
+    description_cues_.push_back(load(key + "_description.wav"));
+  }
+  message_cues_.fill(-1);
+  message_cues_[static_cast<std::size_t>(Cue::kRecordCountdown)] = load("record_countdown.wav");
+  message_cues_[static_cast<std::size_t>(Cue::kRecordingTooQuiet)] = load("too_quiet.wav");
+  message_cues_[static_cast<std::size_t>(Cue::kRecordingTooLoud)] = load("too_loud.wav");
+  message_cues_[static_cast<std::size_t>(Cue::kRecordingUnavailable)] = load("no_microphone.wav");
+  message_cues_[static_cast<std::size_t>(Cue::kVoiceReady)] = load("voice_ready.wav");
+
+  // Staff test signals: 1 kHz at -12 dBFS on the speaker for 1 s; a 2 s exponential sweep
+  // 40 -> 800 Hz (the transducer band) at -6 dBFS on ch 2. 10 ms raised-cosine edges.
+  const auto edge = [&](std::size_t i, std::size_t n) {
+    const double ramp = 0.01 * fs_hz;
+    const double k =
+        std::min({1.0, static_cast<double>(i) / ramp, static_cast<double>(n - i) / ramp});
+    return 0.5 - 0.5 * std::cos(3.14159265358979 * k);
+  };
+  {
+    const auto n = static_cast<std::size_t>(fs_hz);
+    std::vector<float> tone(n * 2, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      tone[2 * i] = static_cast<float>(
+          0.25 * edge(i, n) *
+          std::sin(2.0 * 3.14159265358979 * 1000.0 * static_cast<double>(i) / fs_hz));
+    }
+    tone_clip_ = AddClip("test tone", std::move(tone));
+  }
+  {
+    const auto n = static_cast<std::size_t>(2.0 * fs_hz);
+    const double f0 = 40.0, f1 = 800.0, length_s = 2.0;
+    const double k = std::log(f1 / f0);
+    std::vector<float> sweep(n * 2, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = static_cast<double>(i) / fs_hz;
+      const double phase =
+          2.0 * 3.14159265358979 * f0 * length_s / k * (std::exp(t * k / length_s) - 1.0);
+      sweep[2 * i + 1] = static_cast<float>(0.5 * edge(i, n) * std::sin(phase));
+    }
+    sweep_clip_ = AddClip("transducer sweep", std::move(sweep));
+  }
+}
+
+int KioskEngine::cues_loaded() const {
+  return static_cast<int>(clips_.size()) - 2;  // minus the two test signals
+}
+
+void KioskEngine::Speak(Cue cue, int texture) {
+  int clip = -1;
+  const auto t = static_cast<std::size_t>(std::clamp(texture, 0, int(textures_.size()) - 1));
+  if (cue == Cue::kTextureName) {
+    clip = name_cues_[t];
+  } else if (cue == Cue::kTextureDescription) {
+    clip = description_cues_[t];
+  } else {
+    clip = message_cues_[static_cast<std::size_t>(cue)];
+  }
+  if (clip >= 0) Play(clip);  // no file: carry on silently (the screen still says it)
+}
+
+void KioskEngine::Play(int clip) {
+  Message message;
+  message.kind = Message::Kind::kPlay;
+  message.time_ns = last_now_ns_;
+  message.slot = clip;
+  Send(message);
+}
+
+void KioskEngine::PlayTestTone() {
+  Play(tone_clip_);
+}
+void KioskEngine::PlayTransducerSweep() {
+  Play(sweep_clip_);
+}
+
+// ---------------------------------------------------------------------------- control thread
+
+void KioskEngine::Send(const Message& message) {
+  if (!queue_.TryPush(message)) dropped_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void KioskEngine::ScreenToField(double x_px, double y_px, double* fx, double* fy) const {
+  // The picture covers the screen (picture_io.h ResizeToCover): uniform scale, centred crop.
+  const auto& field = *current_field_;
+  const double sw = options_.screen_width_px, sh = options_.screen_height_px;
+  const double scale = std::max(sw / field.width(), sh / field.height());
+  const double crop_x = (field.width() * scale - sw) / 2.0;
+  const double crop_y = (field.height() * scale - sh) / 2.0;
+  *fx = (x_px + crop_x) / scale;
+  *fy = (y_px + crop_y) / scale;
+}
+
+void KioskEngine::FieldToScreen(double fx, double fy, double* x_px, double* y_px) const {
+  const auto& field = *current_field_;
+  const double sw = options_.screen_width_px, sh = options_.screen_height_px;
+  const double scale = std::max(sw / field.width(), sh / field.height());
+  *x_px = fx * scale - (field.width() * scale - sw) / 2.0;
+  *y_px = fy * scale - (field.height() * scale - sh) / 2.0;
+}
+
+const surface::BubbleWrapState* KioskEngine::bubbles() const {
+  if (bubble_texture_ < 0) return nullptr;
+  const auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
+  return state ? &*state : nullptr;
+}
+
+int KioskEngine::popped_bubbles() const {
+  const auto* state = bubbles();
+  return state ? state->popped_count() : 0;
+}
+
+void KioskEngine::OnPen(const PenInput& pen) {
+  last_now_ns_ = std::max(last_now_ns_, pen.time_ns);
+  session_.OnPen(static_cast<double>(pen.time_ns) * 1e-9, pen.tip_down);
+  const auto& field = *current_field_;
+  double fx = 0.0, fy = 0.0;
+  ScreenToField(pen.x_px, pen.y_px, &fx, &fy);
+  const double pitch = field.pitch_m();
+  const double x_m = fx * pitch, y_m = fy * pitch;
+  const double pressure = std::clamp(pen.pressure, 0.0, 1.0);
+
+  synth::ProbeCommand command;
+  command.tip_down = pen.tip_down && pressure > 0.0;
+  command.x_m = x_m;
+  command.y_m = y_m;
+  if (command.tip_down && have_last_pen_ && last_pen_.tip_down) {
+    const double dx = x_m - last_fx_, dy = y_m - last_fy_;
+    const double distance = std::hypot(dx, dy);
+    const double dt_s = std::max(1e-3, static_cast<double>(pen.time_ns - last_pen_.time_ns) * 1e-9);
+    command.velocity_mps = distance / dt_s;
+    if (distance > 1e-9) {
+      dir_x_ = dx / distance;
+      dir_y_ = dy / distance;
+    }
+  }
+  command.direction_x = dir_x_;
+  command.direction_y = dir_y_;
+  command.normal_force_n = pressure * mapping_.max_force_n;
+  command.penetration_m = pressure * current_relief_m_;
+  const SurfaceChoice choice = session_.surface();
+  if (pen.has_tilt) {
+    command.width_mm = WidthFromTiltMm(pen.tilt_deg, mapping_);
+    command.style = StyleFromWidth(command.width_mm, mapping_);
+  } else if (choice.voice) {
+    command.width_mm = kVoiceWidthMm;
+    command.style = synth::ProbeStyle::kScrape;
+  } else {
+    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
+    command.width_mm = probe.width_mm;
+    command.style = probe.style;
+  }
+  if (pen.style) command.style = *pen.style;
+
+  // Bubble wrap: a hard enough press pops the bubble under the tip (a burst through the contact).
+  if (command.tip_down && !choice.voice && choice.texture == bubble_texture_) {
+    auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
+    if (state) {
+      if (const auto pop = state->Press(fx, fy, pressure * kBubblePressMaxForceN)) {
+        command.burst_impulse_n_s = kPopImpulseNs * pop->strength;
+        bubbles_dirty_ = true;
+      }
+    }
+  }
+
+  Message message;
+  message.kind = Message::Kind::kProbe;
+  message.time_ns = pen.time_ns;
+  message.command = command;
+  Send(message);
+  have_last_pen_ = true;
+  last_pen_ = pen;
+  last_fx_ = x_m;
+  last_fy_ = y_m;
+}
+
+void KioskEngine::OnToken(std::int64_t now_ns, int texture) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  session_.OnTokenSelection(static_cast<double>(now_ns) * 1e-9, texture);
+}
+
+void KioskEngine::OnRecordButton(std::int64_t now_ns, bool pressed) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  session_.OnRecordButton(static_cast<double>(now_ns) * 1e-9, pressed);
+}
+
+void KioskEngine::OnStaffChord(std::int64_t now_ns) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  session_.OnStaffChord(static_cast<double>(now_ns) * 1e-9);
+}
+
+std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  const double now_s = static_cast<double>(now_ns) * 1e-9;
+  if (!audio_running_) SetAudioRunning(false);  // keep the pool moving without a device
+  session_.Tick(now_s);
+  std::vector<SessionAction> all;
+  // Applying actions can produce more (a finished recording becomes a surface): loop.
+  for (int round = 0; round < 4; ++round) {
+    auto actions = session_.TakeActions();
+    if (actions.empty()) break;
+    ApplyActions(now_ns, actions);
+    all.insert(all.end(), actions.begin(), actions.end());
+  }
+  const bool acknowledged = switches_done_.load(std::memory_order_acquire) == switches_sent_;
+  if (pending_surface_ && acknowledged) {
+    const SurfaceChoice choice = *pending_surface_;
+    pending_surface_.reset();
+    ShowSurface(choice);
+  } else if (bubbles_dirty_ && acknowledged && !last_pen_.tip_down) {
+    // The pen is up: the bubble scene takes the flattened field (and rings out the old one).
+    bubbles_dirty_ = false;
+    const SurfaceChoice choice = session_.surface();
+    if (!choice.voice && choice.texture == bubble_texture_) ShowSurface(choice);
+  }
+  if (!options_.counters_path.empty() && session_.counters() != saved_counters_ &&
+      now_s - last_counters_save_s_ >= kCountersSaveIntervalS) {
+    std::string error;
+    if (!SaveCounters(&error)) platform::DefaultLogger().Warn("counters", "not saved: " + error);
+    last_counters_save_s_ = now_s;
+  }
+  return all;
+}
+
+void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAction>& actions) {
+  using Kind = SessionAction::Kind;
+  for (const auto& action : actions) {
+    switch (action.kind) {
+      case Kind::kShowSurface:
+        ShowSurface(action.surface);
+        break;
+      case Kind::kSpeak:
+        Speak(action.cue, action.surface.texture);
+        break;
+      case Kind::kStartRecording:
+        if (recorder_ == nullptr) {
+          session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9,
+                                       RecordingOutcome::kNoMicrophone);
+        } else {
+          recorder_->Arm();
+          recording_ = true;
+        }
+        break;
+      case Kind::kStopRecording:
+        FinishRecording(now_ns);
+        break;
+      case Kind::kCancelRecording:
+        if (recorder_) recorder_->Wipe();
+        recording_ = false;
+        break;
+      case Kind::kWipeVoice:
+        WipeVoice();
+        break;
+      case Kind::kResetTextures:
+        for (auto& texture : textures_) {
+          if (texture.loaded.bubbles) texture.loaded.bubbles->Reset();
+        }
+        bubbles_dirty_ = false;  // the default texture's scene is prepared afresh below
+        break;
+      case Kind::kEnterAttract:
+      case Kind::kLeaveAttract:
+      case Kind::kStaffPanel:
+        break;  // the UI's business
+    }
+  }
+}
+
+void KioskEngine::FinishRecording(std::int64_t now_ns) {
+  if (!recording_ || recorder_ == nullptr) return;
+  recording_ = false;
+  recorder_->Stop();
+  platform::VoiceTake take = recorder_->Take();
+  recorder_->Wipe();
+  RecordingOutcome outcome = RecordingOutcome::kOk;
+  if (take.silent) {
+    outcome = RecordingOutcome::kSilent;
+  } else if (take.clipped) {
+    outcome = RecordingOutcome::kClipped;
+  } else {
+    outcome = AcceptRecording(now_ns, std::move(take.samples));
+  }
+  std::fill(take.samples.begin(), take.samples.end(), 0.0f);
+  session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9, outcome);
+}
+
+RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/, std::vector<float> samples) {
+  surface::AudioClip clip;
+  clip.sample_rate_hz = options_.config.sample_rate_hz;
+  clip.source_rate_hz = clip.sample_rate_hz;
+  clip.source_channels = 1;
+  clip.samples = std::move(samples);
+  surface::SoundImageOptions image;
+  image.sample_rate_hz = clip.sample_rate_hz;
+  image.samples_per_row = static_cast<int>(std::lround(0.1 * clip.sample_rate_hz));
+  image.max_duration_s = options_.config.record_max_duration_s;
+  const auto rows = static_cast<int>(
+      (std::min(clip.samples.size(),
+                static_cast<std::size_t>(std::lround(image.max_duration_s * clip.sample_rate_hz))) +
+       static_cast<std::size_t>(image.samples_per_row) - 1) /
+      static_cast<std::size_t>(image.samples_per_row));
+  // Rows as bands (paper figure 3) so the image has the screen's shape.
+  image.row_height_px = std::max(1, 1080 / std::max(1, rows));
+  RecordingOutcome outcome = RecordingOutcome::kOk;
+  try {
+    surface::HeightField field = surface::SoundToHeightField(
+        clip, image, kVoiceReliefMm, surface::DisplayGeometry{}.pixel_pitch_mm());
+    voice_image_ = surface::SoundToImage(clip.samples, image);
+    voice_.Store(kVoiceSlot, "voice", std::move(field));
+  } catch (const std::invalid_argument&) {
+    outcome = RecordingOutcome::kSilent;  // nothing to feel: ask again
+  }
+  std::fill(clip.samples.begin(), clip.samples.end(), 0.0f);
+  return outcome;
+}
+
+void KioskEngine::WipeVoice() {
+  voice_.Clear(kVoiceSlot);
+  if (voice_image_) std::fill(voice_image_->luminance.begin(), voice_image_->luminance.end(), 0.5f);
+  voice_image_.reset();
+  if (recorder_) recorder_->Wipe();
+}
+
+void KioskEngine::ShowSurface(const SurfaceChoice& choice) {
+  if (audio_running_ && switches_done_.load(std::memory_order_acquire) != switches_sent_) {
+    pending_surface_ = choice;  // the audio side has not taken the previous switch yet
+    return;
+  }
+  if (choice.voice) {
+    auto field = voice_.Recall(kVoiceSlot);
+    if (!field) return;
+    SwitchTo(std::move(field), voice_material_, {});
+    return;
+  }
+  auto& texture = textures_[static_cast<std::size_t>(choice.texture)];
+  auto field = texture.loaded.bubbles ? texture.loaded.bubbles->field() : texture.loaded.field;
+  SwitchTo(std::move(field), texture.material, texture.loaded.file.gains);
+}
+
+int KioskEngine::FreeSlot() const {
+  const int active = audio_active_.load(std::memory_order_acquire);
+  const int fading = audio_fade_from_.load(std::memory_order_acquire);
+  for (int slot = 0; slot < kSceneSlots; ++slot) {
+    if (slot != active && slot != fading && slot != requested_slot_) return slot;
+  }
+  return -1;  // cannot happen with 4 slots and at most 3 in use
+}
+
+void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
+                           const Material& material, const surface::TextureGains& gains) {
+  const int slot = FreeSlot();
+  if (slot < 0) return;
+  auto& target = slots_[static_cast<std::size_t>(slot)];
+  synth::OutputParams output;
+  output.sound_gain = DbToLinear(options_.config.sound_gain_db + gains.sound_gain_db);
+  output.haptic_gain = DbToLinear(options_.config.haptic_gain_db + gains.haptic_gain_db);
+  target.field = field;
+  target.scene.Prepare(material.params, output, target.field->View());
+  current_field_ = std::move(field);
+  current_relief_m_ = ReliefM(*current_field_);
+  Message message;
+  message.kind = Message::Kind::kSwitch;
+  message.time_ns = last_now_ns_;
+  message.slot = slot;
+  requested_slot_ = slot;
+  ++switches_sent_;
+  Send(message);
+}
+
+void KioskEngine::SetAudioRunning(bool running) {
+  audio_running_ = running;
+  if (running) return;
+  // No callback can run: consume the queue here so switches take effect and nothing piles up.
+  Message message;
+  while (queue_.TryPop(message)) {
+    if (message.kind == Message::Kind::kSwitch) {
+      ApplySwitchOnAudio(message.slot);
+      fade_from_ = -1;
+      audio_fade_from_.store(-1, std::memory_order_release);
+    }
+  }
+  playing_clip_ = -1;
+}
+
+bool KioskEngine::SaveCounters(std::string* error) const {
+  if (options_.counters_path.empty()) return true;
+  if (!kiosk::SaveCounters(options_.counters_path, session_.counters(), texture_keys_, error)) {
+    return false;
+  }
+  saved_counters_ = session_.counters();
+  return true;
+}
+
+EngineAudioStats KioskEngine::audio_stats() const {
+  EngineAudioStats stats;
+  stats.pen_to_sample_last_ns = latency_last_ns_.load(std::memory_order_relaxed);
+  stats.pen_to_sample_max_ns = latency_max_ns_.load(std::memory_order_relaxed);
+  stats.commands = commands_done_.load(std::memory_order_relaxed);
+  stats.dropped_commands = dropped_.load(std::memory_order_relaxed);
+  stats.switches = switches_done_.load(std::memory_order_relaxed);
+  return stats;
+}
+
+// ---------------------------------------------------------------------------- audio thread
+
+void KioskEngine::ApplySwitchOnAudio(int slot) noexcept {
+  if (slot == active_) return;
+  if (active_ >= 0) {
+    fade_from_ = active_;
+    fade_pos_ = 0;
+    lift_fading_ = true;
+  }
+  active_ = slot;
+  audio_active_.store(active_, std::memory_order_release);
+  audio_fade_from_.store(fade_from_, std::memory_order_release);
+  switches_done_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+void KioskEngine::Render(float* interleaved, int frames, int channels) noexcept {
+  const double fs_hz = options_.config.sample_rate_hz;
+  const std::int64_t start_ns =
+      options_.virtual_clock ? virtual_now_ns_ : platform::MonotonicNowNs();
+  const int max_chunk = static_cast<int>(scratch_a_.size() / 2);
+  for (int done = 0; done < frames; done += max_chunk) {
+    const int n = std::min(max_chunk, frames - done);
+    RenderChunk(interleaved + static_cast<std::ptrdiff_t>(done) * channels, n, channels,
+                start_ns + static_cast<std::int64_t>(done * 1e9 / fs_hz));
+  }
+  if (options_.virtual_clock) {
+    virtual_now_ns_ += static_cast<std::int64_t>(std::llround(frames * 1e9 / fs_hz));
+  }
+}
+
+void KioskEngine::RenderSegment(float* out, int channels, int begin, int end,
+                                int command_count) noexcept {
+  const int frames = end - begin;
+  if (frames <= 0) return;
+  float* a = scratch_a_.data();
+  float* b = scratch_b_.data();
+  if (active_ >= 0) {
+    slots_[static_cast<std::size_t>(active_)].scene.Process(block_commands_.data(), command_count,
+                                                            a, frames);
+  } else {
+    std::fill(a, a + 2 * frames, 0.0f);
+  }
+  if (fade_from_ >= 0) {
+    synth::ProbeCommand lift;
+    lift.tip_down = false;
+    auto& old = slots_[static_cast<std::size_t>(fade_from_)].scene;
+    const auto state = old.probe_state();
+    lift.x_m = state.x_m;
+    lift.y_m = state.y_m;
+    old.Process(&lift, lift_fading_ ? 1 : 0, b, frames);
+    lift_fading_ = false;
+    // Equal-power cross-fade: uncorrelated sounds keep their loudness through the switch.
+    constexpr double kHalfPi = 1.5707963267948966;
+    for (int i = 0; i < frames; ++i) {
+      const double p = std::min(1.0, static_cast<double>(fade_pos_ + i) / fade_len_);
+      const auto w_in = static_cast<float>(std::sin(kHalfPi * p));
+      const auto w_out = static_cast<float>(std::cos(kHalfPi * p));
+      a[2 * i] = a[2 * i] * w_in + b[2 * i] * w_out;
+      a[2 * i + 1] = a[2 * i + 1] * w_in + b[2 * i + 1] * w_out;
+    }
+    fade_pos_ += frames;
+    if (fade_pos_ >= fade_len_) {
+      fade_from_ = -1;
+      audio_fade_from_.store(-1, std::memory_order_release);
+    }
+  }
+  if (playing_clip_ >= 0) {
+    const auto& clip = clips_[static_cast<std::size_t>(playing_clip_)].samples;
+    const std::size_t n = std::min(clip.size() - clip_pos_, static_cast<std::size_t>(frames) * 2);
+    for (std::size_t i = 0; i < n; ++i) a[i] += clip[clip_pos_ + i];
+    clip_pos_ += n;
+    if (clip_pos_ >= clip.size()) playing_clip_ = -1;
+  }
+  for (int i = 0; i < frames; ++i) {
+    float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;
+    for (int c = 0; c < channels; ++c) {
+      frame[c] = c < 2 ? std::clamp(a[2 * i + c], -1.0f, 1.0f) : 0.0f;
+    }
+  }
+}
+
+void KioskEngine::RenderChunk(float* out, int frames, int channels,
+                              std::int64_t chunk_start_ns) noexcept {
+  const double fs_hz = options_.config.sample_rate_hz;
+  // A pen event from the last buffer period lands at the same place in this buffer: a constant
+  // delay of one buffer (no jitter from when the callback happens to run). Older ones at 0.
+  const double window_start_ns = static_cast<double>(chunk_start_ns) - frames * 1e9 / fs_hz;
+  int segment_start = 0;
+  int last_offset = 0;
+  int count = 0;
+  const int capacity = static_cast<int>(block_commands_.size());
+  Message message;
+  while (count < capacity && queue_.TryPop(message)) {
+    const auto raw = static_cast<long long>(
+        std::llround((static_cast<double>(message.time_ns) - window_start_ns) * fs_hz * 1e-9));
+    const int offset = static_cast<int>(std::clamp<long long>(raw, last_offset, frames - 1));
+    last_offset = offset;
+    if (message.kind == Message::Kind::kProbe) {
+      synth::ProbeCommand command = message.command;
+      command.frame_offset = static_cast<std::uint32_t>(offset - segment_start);
+      block_commands_[static_cast<std::size_t>(count++)] = command;
+      commands_done_.fetch_add(1, std::memory_order_relaxed);
+      const std::int64_t due_ns =
+          chunk_start_ns + static_cast<std::int64_t>(std::llround(offset * 1e9 / fs_hz));
+      const std::int64_t latency = due_ns - message.time_ns;
+      latency_last_ns_.store(latency, std::memory_order_relaxed);
+      if (latency > latency_max_ns_.load(std::memory_order_relaxed)) {
+        latency_max_ns_.store(latency, std::memory_order_relaxed);
+      }
+      continue;
+    }
+    if (offset > segment_start) {  // else the commands so far go to the scene after the switch
+      RenderSegment(out, channels, segment_start, offset, count);
+      count = 0;
+      segment_start = offset;
+    }
+    if (message.kind == Message::Kind::kSwitch) {
+      ApplySwitchOnAudio(message.slot);
+    } else if (message.slot >= 0 && message.slot < static_cast<int>(clips_.size())) {
+      playing_clip_ = message.slot;
+      clip_pos_ = 0;
+    }
+  }
+  RenderSegment(out, channels, segment_start, frames, count);
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,244 @@
+#pragma once
+// The kiosk engine: everything a visit needs between the input devices and the output devices,
+// shared by the live kiosk (app/live_kiosk.cpp: SDL window, PortAudio, pen, switches) and the
+// headless default (app/headless_demo.cpp: a scripted visit through the offline audio loop), so
+// the two never wire things twice (issue 7).
+//
+// Control thread (OnPen, OnToken, OnRecordButton, OnStaffChord, Tick):
+//   pen sample (screen px, pressure, tilt, CLOCK_MONOTONIC time) -> surface metres (the picture
+//   covers the screen: ResizeToCover's scale and crop) -> synth::ProbeCommand (gesture.h mapping:
+//   pressure -> normal force and penetration, tilt -> width and style, velocity from successive
+//   samples) -> SPSC queue. Session (session.h) decides what is shown; its actions are carried
+//   out here (scene switch, recorder, voice slot, bubble reset, cues) and handed on to the UI.
+// Audio thread (Render, the platform's AudioRenderer): pops the queue, places each command on the
+//   frame that keeps a constant pen-to-sound delay of one buffer, runs Scene::Process on the
+//   active scene (and on the previous one while they cross-fade after a switch), mixes the
+//   pre-loaded cue / test-signal buffer, and publishes the measured latency. No lock, no
+//   allocation, no I/O.
+//
+// Scenes live in a small pool of slots. A switch prepares a free slot on the control thread
+// (Scene::Prepare is not real-time) and sends its index; the audio thread acknowledges each switch
+// by a counter, and a slot is reused only when the audio thread can no longer be rendering it.
+// The old scene gets a pen-up and fades out over cross_fade_s while the new one fades in, so a
+// switch never clicks. Bubble pops flatten the field; the flattened field becomes the scene's
+// surface through the same switch once the pen is lifted.
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kiosk/gesture.h"
+#include "kiosk/kiosk_config.h"
+#include "kiosk/material_file.h"
+#include "kiosk/session.h"
+#include "platform/audio/audio_output.h"
+#include "platform/audio/voice_recorder.h"
+#include "platform/common/spsc_queue.h"
+#include "surface/image_loader.h"
+#include "surface/profile_slots.h"
+#include "surface/texture_set.h"
+#include "synth/scene.h"
+
+namespace sas::kiosk {
+
+// One stylus reading in screen pixels (whatever produced it: pen, mouse, touch, a script).
+struct PenInput {
+  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC (or the headless run's virtual clock)
+  double x_px = 0.0;
+  double y_px = 0.0;
+  double pressure = 0.0;  // 0..1
+  double tilt_deg = 0.0;  // from upright
+  bool tip_down = false;
+  bool has_tilt = false;  // a pen: tilt chooses width and style; mouse/touch: the texture's probe
+  std::optional<synth::ProbeStyle> style;  // forces a style (the headless visit's roll strokes)
+};
+
+struct EngineTexture {
+  std::string key;  // folder name, e.g. "wooden_board" (config, counters, cue file names)
+  surface::LoadedTexture loaded;
+  Material material;
+};
+
+struct KioskEngineOptions {
+  KioskConfig config;
+  std::vector<std::string> texture_paths;  // texture.toml files, token order; empty: FindTextures
+  std::string materials_dir;               // searched first (render_command.h search order)
+  std::string counters_path;               // empty: counters are not persisted
+  std::string cues_dir;                    // empty: FindCuesDir()
+  int screen_width_px = 1920;              // the screen the pen coordinates refer to
+  int screen_height_px = 1080;
+  double cross_fade_s = 0.45;   // sound cross-fade on a switch (the picture fades alongside)
+  double countdown_s = 3.0;     // before recording starts
+  bool virtual_clock = false;   // headless: audio time advances by rendered frames from 0
+  int max_block_frames = 4096;  // largest block Render is called with (longer ones are split)
+};
+
+// Latency and load as measured by the audio thread.
+struct EngineAudioStats {
+  std::int64_t pen_to_sample_last_ns = 0;  // pen event -> callback time its first sample is due
+  std::int64_t pen_to_sample_max_ns = 0;
+  std::uint64_t commands = 0;
+  std::uint64_t dropped_commands = 0;  // queue full (control side)
+  std::uint64_t switches = 0;
+};
+
+// The four kiosk textures in token order (bubble wrap, broken glass, wooden board, cracked ground:
+// the paper's §5.2 order), from the first of $SAS_DATA_DIR/textures, the source tree and the
+// installed share/sketch-a-scratch/textures that holds them. Throws std::runtime_error when none.
+std::vector<std::string> FindTextureFiles();
+// <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
+std::string FindCuesDir();
+
+class KioskEngine final : public platform::AudioRenderer {
+ public:
+  // Loads the textures, materials, counters and cues and prepares the default texture's scene.
+  // Throws (naming the file) when a texture or material cannot be loaded.
+  explicit KioskEngine(KioskEngineOptions options);
+  ~KioskEngine() override;
+  KioskEngine(const KioskEngine&) = delete;
+  KioskEngine& operator=(const KioskEngine&) = delete;
+
+  // ---- control thread
+  void OnPen(const PenInput& pen);
+  void OnToken(std::int64_t now_ns, int texture);  // -1: no token on any switch
+  void OnRecordButton(std::int64_t now_ns, bool pressed);
+  void OnStaffChord(std::int64_t now_ns);
+  // Timers, recording, bubble surface updates; returns the session's actions (already applied to
+  // the audio side) for the UI: pictures, overlays, attract, staff panel.
+  std::vector<SessionAction> Tick(std::int64_t now_ns);
+  // The microphone's recorder, or null (no microphone: the record button says so).
+  void SetRecorder(platform::VoiceRecorder* recorder) { recorder_ = recorder; }
+  // False while no audio callback can run (device missing): the control thread then applies
+  // switches itself so the pool stays consistent. Call after each AudioOutput::Poll.
+  void SetAudioRunning(bool running);
+  // Staff panel: a 1 kHz tone on the speaker (ch 1), a 40..800 Hz sweep on the transducer (ch 2).
+  void PlayTestTone();
+  void PlayTransducerSweep();
+  bool SaveCounters(std::string* error) const;
+
+  // ---- views (control thread)
+  const Session& session() const { return session_; }
+  const std::vector<EngineTexture>& textures() const { return textures_; }
+  int default_texture() const { return default_texture_; }
+  SurfaceChoice surface() const { return session_.surface(); }
+  bool has_voice() const { return voice_.occupied(kVoiceSlot); }
+  // The voice recording as a grey sound image (null when the slot is empty).
+  const surface::GrayImage* voice_image() const { return voice_image_ ? &*voice_image_ : nullptr; }
+  // The field under the pen now, and where screen pixel (x, y) lands on it (field samples).
+  std::shared_ptr<const surface::HeightField> current_field() const { return current_field_; }
+  void ScreenToField(double x_px, double y_px, double* fx, double* fy) const;
+  void FieldToScreen(double fx, double fy, double* x_px, double* y_px) const;
+  const surface::BubbleWrapState* bubbles() const;
+  int popped_bubbles() const;
+  float mic_level() const { return recorder_ ? recorder_->Level() : 0.0f; }
+  bool recorder_present() const { return recorder_ != nullptr; }
+  EngineAudioStats audio_stats() const;
+  const KioskConfig& config() const { return options_.config; }
+  const std::string& cues_dir() const { return cues_dir_; }
+  int cues_loaded() const;
+  // Holds a voice take in RAM for a check (headless run, tests): the same path as a recording.
+  RecordingOutcome AcceptRecording(std::int64_t now_ns, std::vector<float> samples);
+
+  // ---- audio thread
+  void Render(float* interleaved, int frames, int channels) noexcept override;
+
+ private:
+  static constexpr int kVoiceSlot = 0;
+  static constexpr int kSceneSlots = 4;
+
+  struct Message {
+    enum class Kind : std::uint8_t { kProbe, kSwitch, kPlay };
+    Kind kind = Kind::kProbe;
+    std::int64_t time_ns = 0;
+    synth::ProbeCommand command{};
+    int slot = -1;  // kSwitch: the new scene; kPlay: the clip
+  };
+  struct Clip {  // a pre-loaded cue or test signal: 2 interleaved channels at the output rate
+    std::vector<float> samples;
+    std::string name;
+  };
+  struct Slot {  // control side: what the slot's scene was prepared with (kept alive by it)
+    synth::Scene scene;
+    std::shared_ptr<const surface::HeightField> field;
+  };
+
+  void ApplyActions(std::int64_t now_ns, const std::vector<SessionAction>& actions);
+  void ShowSurface(const SurfaceChoice& choice);
+  void SwitchTo(std::shared_ptr<const surface::HeightField> field, const Material& material,
+                const surface::TextureGains& gains);
+  void FinishRecording(std::int64_t now_ns);
+  void WipeVoice();
+  void Speak(Cue cue, int texture);
+  void Play(int clip);
+  void Send(const Message& message);
+  int FreeSlot() const;
+  void LoadCues();
+  int AddClip(std::string name, std::vector<float> stereo);
+
+  // Audio side.
+  void ApplySwitchOnAudio(int slot) noexcept;
+  void RenderChunk(float* out, int frames, int channels, std::int64_t chunk_start_ns) noexcept;
+  void RenderSegment(float* out, int channels, int begin, int end, int command_count) noexcept;
+
+  KioskEngineOptions options_;
+  std::vector<EngineTexture> textures_;
+  Material voice_material_;
+  int default_texture_ = 0;
+  Session session_;
+  std::vector<std::string> texture_keys_;
+  GestureMapping mapping_;
+  int bubble_texture_ = -1;
+  bool bubbles_dirty_ = false;  // pops not yet in the bubble scene's surface
+  surface::ProfileSlots voice_;
+  std::optional<surface::GrayImage> voice_image_;
+  platform::VoiceRecorder* recorder_ = nullptr;
+  bool recording_ = false;
+  std::string cues_dir_;
+  std::vector<Clip> clips_;
+  std::vector<int> name_cues_, description_cues_;  // per texture, -1 when absent
+  std::array<int, 7> message_cues_{};              // per Cue (name/description unused)
+  int tone_clip_ = -1, sweep_clip_ = -1;
+
+  // Control side of the pool.
+  std::array<Slot, kSceneSlots> slots_;
+  std::shared_ptr<const surface::HeightField> current_field_;
+  std::uint64_t switches_sent_ = 0;
+  int requested_slot_ = -1;
+  std::optional<SurfaceChoice> pending_surface_;  // waiting for the audio side to take a switch
+  bool audio_running_ = false;
+  std::int64_t last_now_ns_ = 0;
+  double current_relief_m_ = 0.0;
+  mutable UsageCounters saved_counters_;
+  double last_counters_save_s_ = -1e9;
+  // Pen mapping state.
+  bool have_last_pen_ = false;
+  PenInput last_pen_{};
+  double last_fx_ = 0.0, last_fy_ = 0.0;
+  double dir_x_ = 1.0, dir_y_ = 0.0;
+  std::atomic<std::uint64_t> dropped_{0};
+
+  // Audio side (the audio thread only, except the atomics).
+  platform::SpscQueue<Message, 2048> queue_;
+  int active_ = -1;     // slot being rendered
+  int fade_from_ = -1;  // slot fading out, -1 none
+  int fade_pos_ = 0;
+  int fade_len_ = 1;
+  bool lift_fading_ = false;
+  int playing_clip_ = -1;
+  std::size_t clip_pos_ = 0;
+  std::int64_t virtual_now_ns_ = 0;
+  std::vector<synth::ProbeCommand> block_commands_;
+  std::vector<float> scratch_a_, scratch_b_;
+  std::atomic<int> audio_active_{-1};
+  std::atomic<int> audio_fade_from_{-1};
+  std::atomic<std::uint64_t> switches_done_{0};
+  std::atomic<std::uint64_t> commands_done_{0};
+  std::atomic<std::int64_t> latency_last_ns_{0};
+  std::atomic<std::int64_t> latency_max_ns_{0};
+};
+
+}  // namespace sas::kiosk

@@ -1,0 +1,483 @@
+// The live kiosk (see live_kiosk.h): one control loop on the main thread wiring the window, the
+// pen, the switches, the microphone and the audio device to the KioskEngine and the VisitView.
+//
+// Loop, each pass: SDL events (mouse/touch fallback, keyboard tokens, staff chord) -> libinput pen
+// events -> switch events (TokenSelector) -> engine.Tick (session timers, recording, switches) ->
+// audio supervisor Poll (reopens a lost device; the engine is told whether a callback runs) ->
+// view.Advance and Present only when a frame is due -> watchdog ping when every thread is alive.
+// The loop sleeps in SDL's event wait (2 ms with a pen tablet, whose events come from libinput's
+// thread, so a pen event waits at most that long; longer with mouse/touch, which wake it).
+#include "live_kiosk.h"
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_input.h"
+#include "platform/audio/audio_output.h"
+#include "platform/common/clock.h"
+#include "platform/device_status.h"
+#include "platform/input/switch_factory.h"
+#include "platform/input/token_selector.h"
+#include "platform/log/log.h"
+#include "platform/pen/pen_source.h"
+#include "platform/watchdog/watchdog.h"
+#include "sas/version.h"
+#include "ui/kiosk_window.h"
+#include "ui/overlay.h"
+#include "ui/text.h"
+#include "visit_view.h"
+
+namespace sas::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::atomic<bool> g_stop{false};
+
+void OnSignal(int /*signal*/) {
+  g_stop.store(true);
+}
+
+struct KioskArgs {
+  std::string config_path = "/etc/sketch-a-scratch/kiosk.toml";
+  std::string state_dir;  // counters and the last good configuration
+};
+
+std::string DefaultStateDir() {
+  if (const char* dir = std::getenv("STATE_DIRECTORY"); dir != nullptr && *dir)
+    return dir;  // systemd
+  if (const char* dir = std::getenv("XDG_STATE_HOME"); dir != nullptr && *dir) {
+    return (fs::path(dir) / "sketch-a-scratch").string();
+  }
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home) {
+    return (fs::path(home) / ".local" / "state" / "sketch-a-scratch").string();
+  }
+  return "/var/lib/sketch-a-scratch";
+}
+
+std::string Fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// The staff panel's buttons (tapped with the pen or the mouse while the panel is open).
+struct StaffButtons {
+  ui::PixelRect tone;
+  ui::PixelRect sweep;
+};
+
+StaffButtons StaffButtonRects(int width, int height) {
+  const ui::PixelRect panel = ui::StaffPanelRect(width, height);
+  const int h = 44, w = 260;
+  const int y = panel.y + panel.h - h - 16;
+  return {{panel.x + 16, y, w, h}, {panel.x + 32 + w, y, w, h}};
+}
+
+class StaffPanel {
+ public:
+  struct Inputs {
+    const kiosk::KioskEngine* engine;
+    const platform::AudioOutput* output;
+    const platform::DeviceStatusBoard* board;
+    const platform::SwitchInputs* switches;
+    const platform::TokenSelector* selector;
+    bool record_down;
+    ui::StylusSample pen;
+    std::string config_line;
+    int buffer_frames;
+    int sample_rate_hz;
+  };
+
+  // Rebuilds the panel's text at most 4 times a second (a frame is drawn only when it changed).
+  const ui::Overlays& Build(const Inputs& in, int width, int height, double now_s) {
+    if (now_s - built_s_ < 0.25 && !overlays_.empty()) return overlays_;
+    built_s_ = now_s;
+    overlays_.clear();
+    const ui::PixelRect panel = ui::StaffPanelRect(width, height);
+    const int scale = panel.w >= 1100 ? 2 : 1;
+    const int line_h = (ui::kGlyphHeight + 4) * scale;
+    const int max_chars = (panel.w - 32) / (ui::kGlyphAdvance * scale);
+    int y = panel.y + 16;
+    const ui::Rgba white{235, 235, 235, 255};
+    const ui::Rgba amber{250, 190, 60, 255};
+    const auto line = [&](std::string text, ui::Rgba color) {
+      if (static_cast<int>(text.size()) > max_chars)
+        text.resize(static_cast<std::size_t>(max_chars));
+      if (y + line_h > panel.y + panel.h - 80) return;
+      ui::AddText(overlays_, panel.x + 16, y, scale, text, color);
+      y += line_h;
+    };
+    line(std::string("SKETCH-A-SCRATCH ") + kVersion + " - STAFF PANEL (CHORD AGAIN TO CLOSE)",
+         amber);
+    for (const auto& status : in.board->All()) {
+      line(status.device + ": " + platform::DeviceStateName(status.state) +
+               (status.backend.empty() ? "" : " (" + status.backend + ")") + " - " + status.message,
+           status.state == platform::DeviceState::kOk ? white : amber);
+    }
+    const auto stats = in.output->Stats();
+    const double buffer_ms = 1e3 * in.buffer_frames / in.sample_rate_hz;
+    line("AUDIO: " + std::string(in.output->Running() ? "RUNNING" : "SILENT (NO DEVICE)") +
+             ", XRUNS " + std::to_string(stats.xruns) + ", CALLBACK LOAD " +
+             Fixed(100.0 * static_cast<double>(stats.last_callback_ns) * 1e-6 / buffer_ms, 1) +
+             "% (MAX " +
+             Fixed(100.0 * static_cast<double>(stats.max_callback_ns) * 1e-6 / buffer_ms, 1) +
+             "%) OF " + Fixed(buffer_ms, 2) + " MS",
+         white);
+    const auto engine_stats = in.engine->audio_stats();
+    line("PEN EVENT -> FIRST OUTPUT SAMPLE: LAST " +
+             Fixed(static_cast<double>(engine_stats.pen_to_sample_last_ns) * 1e-6, 2) +
+             " MS, MAX " + Fixed(static_cast<double>(engine_stats.pen_to_sample_max_ns) * 1e-6, 2) +
+             " MS (TARGET " + Fixed(buffer_ms + 1.0, 2) + " MS), DROPPED " +
+             std::to_string(engine_stats.dropped_commands),
+         white);
+    std::string tokens = "SWITCHES: " + std::string(in.switches->ActiveBackend()) + ", TOKENS";
+    for (int t = 0; t < platform::kTokenCount; ++t) {
+      tokens += " " + std::to_string(t + 1) + (in.selector->Present(t) ? ":ON" : ":OFF");
+    }
+    tokens +=
+        ", RECORD " + std::string(in.record_down ? "DOWN" : "UP") + ", SHOWING " +
+        (in.engine->surface().voice
+             ? std::string("VOICE")
+             : in.engine->textures()[static_cast<std::size_t>(in.engine->surface().texture)].key);
+    line(tokens, white);
+    const float level = in.engine->mic_level();
+    line("MICROPHONE: " +
+             std::string(in.engine->recorder_present()
+                             ? "LEVEL " +
+                                   (level > 0.0f ? Fixed(20.0 * std::log10(level), 1) : "-INF") +
+                                   " DBFS"
+                             : "NONE (RECORDING DISABLED)"),
+         white);
+    line("PEN: PRESSURE " + Fixed(in.pen.pressure, 2) + ", TILT " + Fixed(in.pen.TiltDeg(), 1) +
+             " DEG, AT " + Fixed(in.pen.x_px, 0) + "," + Fixed(in.pen.y_px, 0) +
+             (in.pen.source == ui::StylusSource::kPen     ? " (TABLET)"
+              : in.pen.source == ui::StylusSource::kTouch ? " (TOUCH)"
+                                                          : " (MOUSE)"),
+         white);
+    const auto& counters = in.engine->session().counters();
+    std::string strokes = "STROKES:";
+    for (std::size_t t = 0; t < counters.strokes_per_texture.size(); ++t) {
+      strokes += " " + in.engine->textures()[t].key + " " +
+                 std::to_string(counters.strokes_per_texture[t]);
+    }
+    line(strokes + ", VOICE " + std::to_string(counters.voice_strokes), white);
+    line("RECORDINGS " + std::to_string(counters.recordings) + " (FAILED " +
+             std::to_string(counters.failed_recordings) + "), VISITS " +
+             std::to_string(counters.sessions) + ", CUES " +
+             std::to_string(in.engine->cues_loaded()),
+         white);
+    line(in.config_line, white);
+    const StaffButtons buttons = StaffButtonRects(width, height);
+    for (const auto& [rect, label] :
+         {std::pair{buttons.tone, "TEST TONE"}, std::pair{buttons.sweep, "SWEEP"}}) {
+      overlays_.push_back({rect, {60, 90, 140, 255}});
+      ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, 2)) / 2,
+                  rect.y + (rect.h - ui::kGlyphHeight * 2) / 2, 2, label, white);
+    }
+    return overlays_;
+  }
+
+ private:
+  double built_s_ = -1.0;
+  ui::Overlays overlays_;
+};
+
+// One journal line per visible session step (staff reading the journal, the end-to-end test).
+void LogActions(platform::Logger& log, const kiosk::KioskEngine& engine,
+                const std::vector<kiosk::SessionAction>& actions) {
+  using Kind = kiosk::SessionAction::Kind;
+  for (const auto& action : actions) {
+    switch (action.kind) {
+      case Kind::kShowSurface:
+        log.Info("session",
+                 action.surface.voice
+                     ? std::string("showing the voice")
+                     : "showing " +
+                           engine.textures()[static_cast<std::size_t>(action.surface.texture)].key);
+        break;
+      case Kind::kStartRecording:
+        log.Info("session", "recording started");
+        break;
+      case Kind::kStopRecording:
+        log.Info("session", "recording stopped");
+        break;
+      case Kind::kCancelRecording:
+        log.Info("session", "recording cancelled");
+        break;
+      case Kind::kWipeVoice:
+        log.Info("session", "voice wiped");
+        break;
+      case Kind::kEnterAttract:
+        log.Info("session", "idle reset: attract screen");
+        break;
+      case Kind::kLeaveAttract:
+        log.Info("session", "visit started");
+        break;
+      case Kind::kSpeak:
+        if (action.cue == kiosk::Cue::kRecordingTooQuiet)
+          log.Info("session", "recording too quiet");
+        if (action.cue == kiosk::Cue::kRecordingTooLoud) log.Info("session", "recording too loud");
+        if (action.cue == kiosk::Cue::kRecordingUnavailable) {
+          log.Info("session", "recording unavailable (no microphone)");
+        }
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
+  KioskArgs options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--config" && i + 1 < args.size()) {
+      options.config_path = args[++i];
+    } else if (args[i] == "--state-dir" && i + 1 < args.size()) {
+      options.state_dir = args[++i];
+    } else {
+      std::fprintf(
+          err, "sketch-a-scratch kiosk: unknown option \"%s\" (--config FILE, --state-dir DIR)\n",
+          args[i].c_str());
+      return 2;
+    }
+  }
+  if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
+  auto& log = platform::DefaultLogger();
+  platform::DeviceStatusBoard board(log);
+  std::error_code dir_error;
+  fs::create_directories(options.state_dir, dir_error);
+  if (dir_error)
+    log.Warn("kiosk", "state folder " + options.state_dir + ": " + dir_error.message());
+
+  const auto loaded = kiosk::LoadKioskConfigWithFallback(
+      options.config_path, (fs::path(options.state_dir) / "kiosk.last-good.toml").string());
+  const kiosk::KioskConfig& config = loaded.config;
+  std::string config_line = "CONFIG: " + options.config_path;
+  if (!loaded.problem.empty()) {
+    log.Warn("config", loaded.problem);
+    config_line += loaded.source == kiosk::ConfigLoadResult::Source::kLastGood
+                       ? " BAD, USING THE LAST GOOD ONE: "
+                       : " NOT USED, DEFAULTS: ";
+    config_line += loaded.problem;
+  }
+
+  ui::KioskWindow window;
+  try {
+    window.Open();
+  } catch (const std::exception& error) {
+    log.Error("display", std::string("cannot open the kiosk window: ") + error.what());
+    return 1;
+  }
+  const int width = window.width_px(), height = window.height_px();
+  std::signal(SIGTERM, OnSignal);
+  std::signal(SIGINT, OnSignal);
+
+  kiosk::KioskEngineOptions engine_options;
+  engine_options.config = config;
+  engine_options.screen_width_px = width;
+  engine_options.screen_height_px = height;
+  engine_options.counters_path = (fs::path(options.state_dir) / "counters.toml").string();
+  std::unique_ptr<kiosk::KioskEngine> engine;
+  std::unique_ptr<VisitView> view;
+  try {
+    engine = std::make_unique<kiosk::KioskEngine>(engine_options);
+    view = std::make_unique<VisitView>(*engine, width, height);
+  } catch (const std::exception& error) {
+    log.Error("kiosk", std::string("cannot load the textures: ") + error.what());
+    return 1;
+  }
+
+  // Microphone first (the engine keeps a pointer to its recorder), then the output.
+  platform::AudioInputConfig input_config;
+  input_config.device = config.input_device;
+  input_config.sample_rate_hz = config.sample_rate_hz;
+  platform::VoiceRecorderConfig recorder_config;
+  recorder_config.sample_rate_hz = config.sample_rate_hz;
+  recorder_config.max_duration_s = config.record_max_duration_s;
+  recorder_config.clip_level = static_cast<float>(config.record_clip_level);
+  recorder_config.silence_rms_dbfs = config.record_silence_rms_dbfs;
+  auto input = platform::MakePortAudioInput(input_config, recorder_config, board);
+  if (input->Start()) engine->SetRecorder(&input->recorder());
+
+  platform::AudioOutputConfig output_config;
+  output_config.device = config.output_device;
+  output_config.sample_rate_hz = config.sample_rate_hz;
+  output_config.frames_per_buffer = config.buffer_frames;
+  output_config.reopen_backoff_initial_s = config.reopen_backoff_initial_s;
+  output_config.reopen_backoff_max_s = config.reopen_backoff_max_s;
+  output_config.stall_timeout_s = config.stall_timeout_s;
+  auto output = platform::MakePortAudioOutput(*engine, output_config, board);
+  output->Start();  // absent: runs silent, Poll retries with back-off
+  engine->SetAudioRunning(output->Running());
+
+  platform::SwitchesConfig switches_config;
+  switches_config.backend = config.switches_backend;
+  switches_config.gpio.chip = config.gpio_chip;
+  for (std::size_t i = 0; i < switches_config.gpio.lines.size() && i < config.gpio_lines.size();
+       ++i) {
+    switches_config.gpio.lines[i] = config.gpio_lines[i];
+  }
+  switches_config.gpio.active_low = config.switches_active_low;
+  switches_config.gpio.debounce_ms = config.switches_debounce_ms;
+  switches_config.mcp2221.path = config.mcp2221_path;
+  switches_config.mcp2221.active_low = config.switches_active_low;
+  switches_config.mcp2221.debounce_ms = config.switches_debounce_ms;
+  switches_config.mcp2221.poll_interval_ms = config.mcp2221_poll_ms;
+  auto switches = platform::OpenSwitchInputs(switches_config, board);
+  platform::TokenSelector selector;
+  bool record_down = false;
+
+  platform::PenConfig pen_config;
+  pen_config.screen_width_px = width;
+  pen_config.screen_height_px = height;
+  pen_config.seat = config.pen_seat;
+  pen_config.device_name_contains = config.pen_device;
+  auto pen = platform::OpenPen(pen_config, board);
+
+  platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
+  watchdog.Watch("audio", [&]() -> std::int64_t {
+    return output->Running() ? output->Stats().heartbeat_ns : platform::WatchdogSupervisor::kExempt;
+  });
+  if (pen) watchdog.Watch("pen", [&]() { return pen->HeartbeatNs(); });
+  if (switches.hardware) {
+    watchdog.Watch("switches", [&]() -> std::int64_t {
+      const auto beat = switches.hardware->HeartbeatNs();
+      return beat < 0 ? platform::WatchdogSupervisor::kExempt : beat;
+    });
+  }
+  watchdog.Ready("exploring");
+  std::fprintf(out, "kiosk ready %dx%d %s, audio %s, pen %s, switches %s\n", width, height,
+               window.driver().c_str(), output->Running() ? "running" : "silent",
+               pen ? "libinput" : "mouse/touch", switches.ActiveBackend());
+  std::fflush(out);
+
+  StaffPanel staff;
+  ui::StylusSample last_pen{};
+  const StaffButtons buttons = StaffButtonRects(width, height);
+  const auto stylus_to_engine = [&](const ui::StylusSample& s) {
+    kiosk::PenInput input_sample;
+    input_sample.time_ns = s.time_ns;
+    input_sample.x_px = s.x_px;
+    input_sample.y_px = s.y_px;
+    input_sample.pressure = s.tip_down ? s.pressure : 0.0;
+    input_sample.tilt_deg = s.TiltDeg();
+    input_sample.has_tilt = s.source == ui::StylusSource::kPen;
+    input_sample.tip_down = s.tip_down;
+    last_pen = s;
+    view->OnStylus(s);
+    // While the staff panel is open the pen works its buttons; elsewhere it still explores.
+    if (window.staff_panel_open() && s.tip_down) {
+      const int x = static_cast<int>(s.x_px), y = static_cast<int>(s.y_px);
+      if (buttons.tone.Contains(x, y) || buttons.sweep.Contains(x, y)) {
+        static std::int64_t last_press_ns = 0;
+        if (s.time_ns - last_press_ns > 500 * platform::kNsPerMs) {
+          last_press_ns = s.time_ns;
+          if (buttons.tone.Contains(x, y)) {
+            engine->PlayTestTone();
+            log.Info("staff", "test tone on the speaker");
+          } else {
+            engine->PlayTransducerSweep();
+            log.Info("staff", "sweep on the transducer");
+          }
+        }
+        return;
+      }
+    }
+    engine->OnPen(input_sample);
+  };
+
+  while (!g_stop.load()) {
+    const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen ? 2 : 8);
+    for (const auto& event : window.PollEvents(wait_ms)) {
+      using Kind = ui::UiEvent::Kind;
+      switch (event.kind) {
+        case Kind::kPointerDown:
+        case Kind::kPointerMove:
+        case Kind::kPointerUp:
+          if (!pen) stylus_to_engine(event.stylus);  // a tablet speaks through libinput instead
+          break;
+        case Kind::kTokenKey:
+          if (event.token >= 0) {
+            switches.keyboard->OnKey(static_cast<char>('1' + event.token), true, event.time_ns);
+          }
+          break;
+        case Kind::kRecordKey:
+          switches.keyboard->OnKey('r', event.pressed, event.time_ns);
+          break;
+        case Kind::kStaffChord:
+          engine->OnStaffChord(event.time_ns);
+          log.Info("staff", event.pressed ? "staff panel opened" : "staff panel closed");
+          break;
+        case Kind::kRedraw:
+          view->view().Invalidate();
+          break;
+      }
+    }
+    if (pen) {
+      platform::PenEvent pe;
+      while (pen->Pop(pe)) {
+        ui::StylusSample s;
+        s.time_ns = pe.time_ns;
+        s.x_px = pe.x_px;
+        s.y_px = pe.y_px;
+        s.tip_down = pe.tip_down && pe.in_proximity;
+        s.pressure = s.tip_down ? pe.pressure : 0.0f;
+        s.tilt_x_deg = pe.tilt_x_deg;
+        s.tilt_y_deg = pe.tilt_y_deg;
+        s.source = ui::StylusSource::kPen;
+        stylus_to_engine(s);
+      }
+    }
+    platform::SwitchEvent se;
+    while (switches.Pop(se)) {
+      if (se.input == platform::kRecordInput) {
+        record_down = se.pressed;
+        engine->OnRecordButton(se.time_ns, se.pressed);
+      } else if (selector.Apply(se)) {
+        engine->OnToken(se.time_ns, selector.Selected());
+      }
+    }
+    const std::int64_t now_ns = platform::MonotonicNowNs();
+    const double now_s = static_cast<double>(now_ns) * 1e-9;
+    const auto actions = engine->Tick(now_ns);
+    if (!actions.empty()) {
+      LogActions(log, *engine, actions);
+      view->Apply(actions, now_s);
+    }
+    output->Poll(now_ns);
+    engine->SetAudioRunning(output->Running());
+
+    ui::Overlays staff_overlays;
+    if (window.staff_panel_open()) {
+      staff_overlays =
+          staff.Build({engine.get(), output.get(), &board, &switches, &selector, record_down,
+                       last_pen, config_line, config.buffer_frames, config.sample_rate_hz},
+                      width, height, now_s);
+    }
+    if (view->Advance(now_s, window.staff_panel_open(), std::move(staff_overlays))) {
+      window.Present(view->view().TakeFrame());
+    }
+    watchdog.Tick(now_ns);
+  }
+  log.Info("kiosk", "stopping");
+  std::string error;
+  if (!engine->SaveCounters(&error)) log.Warn("counters", error);
+  output->Stop();
+  engine->SetAudioRunning(false);
+  input->Stop();
+  engine->SetRecorder(nullptr);
+  input->recorder().Wipe();
+  window.Close();
+  return 0;
+}
+
+}  // namespace sas::app

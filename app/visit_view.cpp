@@ -1,0 +1,198 @@
+// What the visitor sees (see visit_view.h).
+#include "visit_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ui/overlay.h"
+#include "ui/picture_io.h"
+#include "ui/text.h"
+
+namespace sas::app {
+namespace {
+
+constexpr double kMessageS = 4.0;
+constexpr double kAttractFps = 12.0;  // the attract animation is slow: a few frames a second do
+
+}  // namespace
+
+VisitView::VisitView(const kiosk::KioskEngine& engine, int width, int height)
+    : engine_(&engine), width_(width), height_(height), view_(width, height) {
+  for (const auto& texture : engine.textures()) {
+    pictures_.push_back(std::make_shared<const ui::ImageRgba>(
+        ui::ResizeToCover(ui::LoadPicture(texture.loaded.file.picture_path), width, height)));
+  }
+  for (std::size_t i = 0; i < engine.textures().size(); ++i) {
+    if (engine.textures()[i].loaded.bubbles) bubble_texture_ = static_cast<int>(i);
+  }
+  current_ = pictures_.at(static_cast<std::size_t>(engine.surface().texture));
+  view_.ShowPicture(current_, 0.0, false);
+}
+
+std::shared_ptr<const ui::ImageRgba> VisitView::PoppedPicture() const {
+  const auto& texture = engine_->textures()[static_cast<std::size_t>(bubble_texture_)];
+  const auto* state = engine_->bubbles();
+  const auto& original = *pictures_[static_cast<std::size_t>(bubble_texture_)];
+  auto picture = std::make_shared<ui::ImageRgba>(original);
+  if (state == nullptr || !texture.loaded.file.bubbles) return picture;
+  // Field samples -> screen pixels: the inverse of the cover fit (KioskEngine::ScreenToField).
+  const auto& field = *texture.loaded.field;
+  const double scale = std::max(static_cast<double>(width_) / field.width(),
+                                static_cast<double>(height_) / field.height());
+  const double crop_x = (field.width() * scale - width_) / 2.0;
+  const double crop_y = (field.height() * scale - height_) / 2.0;
+  const double radius = texture.loaded.file.bubbles->layout.radius_px * scale;
+  for (int b = 0; b < state->bubble_count(); ++b) {
+    if (!state->popped(b)) continue;
+    const double cx = state->centres()[static_cast<std::size_t>(b)].first * scale - crop_x;
+    const double cy = state->centres()[static_cast<std::size_t>(b)].second * scale - crop_y;
+    // The film between the bubbles, a little darker: a flat, crumpled patch where the dome was.
+    double sum[3] = {0, 0, 0};
+    int n = 0;
+    for (int k = 0; k < 32; ++k) {
+      const double a = 2.0 * 3.14159265358979 * k / 32.0;
+      const int x = static_cast<int>(cx + 1.2 * radius * std::cos(a));
+      const int y = static_cast<int>(cy + 1.2 * radius * std::sin(a));
+      if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
+      const auto p = original.at(x, y);
+      sum[0] += p.r;
+      sum[1] += p.g;
+      sum[2] += p.b;
+      ++n;
+    }
+    if (n == 0) continue;
+    for (int y = std::max(0, static_cast<int>(cy - radius));
+         y < std::min(height_, static_cast<int>(cy + radius) + 1); ++y) {
+      for (int x = std::max(0, static_cast<int>(cx - radius));
+           x < std::min(width_, static_cast<int>(cx + radius) + 1); ++x) {
+        const double dx = x - cx, dy = y - cy;
+        const double r = std::hypot(dx, dy) / radius;
+        if (r > 1.0) continue;
+        // Creases: a few radial folds, darker towards the middle.
+        const double fold = 0.5 + 0.5 * std::cos(7.0 * std::atan2(dy, dx) + 3.0 * r);
+        const double shade = 0.78 + 0.12 * r - 0.08 * fold * (1.0 - r);
+        picture->set(x, y,
+                     {static_cast<std::uint8_t>(std::clamp(sum[0] / n * shade, 0.0, 255.0)),
+                      static_cast<std::uint8_t>(std::clamp(sum[1] / n * shade, 0.0, 255.0)),
+                      static_cast<std::uint8_t>(std::clamp(sum[2] / n * shade, 0.0, 255.0)), 255});
+      }
+    }
+  }
+  return picture;
+}
+
+void VisitView::SyncBubbles(double now_s) {
+  if (bubble_texture_ < 0) return;
+  const int popped = engine_->popped_bubbles();
+  if (popped == shown_popped_) return;
+  shown_popped_ = popped;
+  const auto surface = engine_->surface();
+  if (surface.voice || surface.texture != bubble_texture_) return;
+  current_ = popped == 0 ? pictures_[static_cast<std::size_t>(bubble_texture_)] : PoppedPicture();
+  view_.ShowPicture(current_, now_s, false);  // a pop is instant
+}
+
+void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double now_s) {
+  using Kind = kiosk::SessionAction::Kind;
+  for (const auto& action : actions) {
+    switch (action.kind) {
+      case Kind::kShowSurface:
+        if (action.surface.voice) {
+          if (const auto* gray = engine_->voice_image()) {
+            current_ = std::make_shared<const ui::ImageRgba>(
+                ui::ResizeToCover(ui::FromGrayImage(*gray), width_, height_));
+          }
+        } else if (action.surface.texture == bubble_texture_ && engine_->popped_bubbles() > 0) {
+          current_ = PoppedPicture();
+          shown_popped_ = engine_->popped_bubbles();
+        } else {
+          current_ = pictures_.at(static_cast<std::size_t>(action.surface.texture));
+        }
+        view_.ShowPicture(current_, now_s, true);
+        break;
+      case Kind::kResetTextures:
+        view_.ResetDeformation();
+        break;
+      case Kind::kEnterAttract:
+        attract_ = true;
+        attract_since_s_ = now_s;
+        break;
+      case Kind::kLeaveAttract:
+        attract_ = false;
+        break;
+      case Kind::kSpeak:
+        // The spoken friendly messages also show on screen (a coloured banner) for a while.
+        switch (action.cue) {
+          case kiosk::Cue::kRecordingTooQuiet:
+            message_ = "too quiet: try again a little louder";
+            message_color_ = {40, 110, 220, 220};
+            break;
+          case kiosk::Cue::kRecordingTooLoud:
+            message_ = "too loud: try again a little further away";
+            message_color_ = {240, 140, 30, 220};
+            break;
+          case kiosk::Cue::kRecordingUnavailable:
+            message_ = "recording is not available right now";
+            message_color_ = {120, 120, 120, 220};
+            break;
+          default:
+            continue;
+        }
+        message_until_s_ = now_s + kMessageS;
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+void VisitView::OnStylus(const ui::StylusSample& sample) {
+  view_.OnStylus(sample);
+}
+
+bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_extra) {
+  SyncBubbles(now_s);
+  ui::Overlays overlays;
+  const auto& session = engine_->session();
+  if (attract_) {
+    // A gentle invitation: the screen breathes (a veil fading in and out every 4 s) and a soft
+    // frame pulses around it. Quantised in time so an idle kiosk draws only a few frames a second.
+    const double t = std::floor((now_s - attract_since_s_) * kAttractFps) / kAttractFps;
+    const double breath = 0.5 - 0.5 * std::cos(2.0 * 3.14159265358979 * t / 4.0);
+    overlays.push_back(
+        {{0, 0, width_, height_}, {0, 0, 0, static_cast<std::uint8_t>(40 + 70 * breath)}});
+    const int thickness = 6 + static_cast<int>(10 * breath);
+    ui::AddFrame(overlays, {0, 0, width_, height_}, thickness,
+                 {255, 255, 255, static_cast<std::uint8_t>(60 + 100 * breath)});
+    const int scale = std::max(2, width_ / 320);
+    const char* invite = "TOUCH THE PICTURE WITH THE PEN";
+    ui::AddText(overlays, (width_ - ui::TextWidth(invite, scale)) / 2, height_ / 2 - 4 * scale,
+                scale, invite, {255, 255, 255, static_cast<std::uint8_t>(150 + 100 * breath)});
+  }
+  if (session.mode() == kiosk::SessionMode::kCountdown) {
+    const double left = session.SecondsLeft(now_s);
+    ui::AddCountdownBar(overlays, width_, height_, static_cast<float>(left / 3.0));
+    ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
+  } else if (session.mode() == kiosk::SessionMode::kRecording) {
+    ui::AddRecordingDot(overlays, width_, height_);
+    ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
+  }
+  if (!message_.empty() && now_s < message_until_s_) {
+    const int banner_h = std::max(24, height_ / 10);
+    overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
+    const int scale = std::max(2, banner_h / 14);
+    ui::AddText(overlays, (width_ - ui::TextWidth(message_, scale)) / 2,
+                height_ - banner_h + (banner_h - 7 * scale) / 2, scale, message_,
+                {255, 255, 255, 255});
+  } else {
+    message_.clear();
+  }
+  if (staff_panel_open) {
+    ui::AddStaffPanelFrame(overlays, width_, height_);
+    overlays.insert(overlays.end(), staff_extra.begin(), staff_extra.end());
+  }
+  view_.SetOverlays(std::move(overlays));
+  return view_.Advance(now_s);
+}
+
+}  // namespace sas::app

@@ -1,0 +1,174 @@
+// The kiosk engine on the virtual clock (as the headless default runs it): pen timing, the
+// click-free switch, the voice slot's life and the persisted counters, with the real textures.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_input.h"
+#include "support/temp_dir.h"
+
+using sas::kiosk::KioskEngine;
+using sas::kiosk::KioskEngineOptions;
+using sas::kiosk::PenInput;
+
+namespace {
+
+constexpr int kFrames = 128;
+constexpr double kFs = 48000.0;
+constexpr std::int64_t kBlockNs = 2'666'667;  // 128 frames at 48 kHz
+
+KioskEngineOptions Options() {
+  KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.screen_width_px = 1920;
+  options.screen_height_px = 1080;
+  options.cues_dir = "/nonexistent";  // no spoken cues in the output: only the synth
+  options.config.idle_timeout_s = 5.0;
+  return options;
+}
+
+std::vector<float> RenderBlocks(KioskEngine& engine, int blocks) {
+  std::vector<float> out(static_cast<std::size_t>(kFrames * 2 * blocks));
+  for (int b = 0; b < blocks; ++b) engine.Render(out.data() + b * kFrames * 2, kFrames, 2);
+  return out;
+}
+
+double Rms(const std::vector<float>& stereo, std::size_t from, std::size_t to) {
+  double sum = 0.0;
+  for (std::size_t i = from; i < to; ++i) sum += static_cast<double>(stereo[2 * i]) * stereo[2 * i];
+  return std::sqrt(sum / static_cast<double>(to - from));
+}
+
+PenInput Pen(std::int64_t t_ns, double x, double y, bool down) {
+  PenInput pen;
+  pen.time_ns = t_ns;
+  pen.x_px = x;
+  pen.y_px = y;
+  pen.pressure = down ? 0.8 : 0.0;
+  pen.tip_down = down;
+  pen.has_tilt = true;
+  return pen;
+}
+
+}  // namespace
+
+TEST_CASE("engine: a pen event lands exactly one audio buffer after it happened", "[kiosk]") {
+  KioskEngine engine(Options());
+  engine.SetAudioRunning(true);
+  RenderBlocks(engine, 11);  // silence; the virtual clock is now at the start of block 11
+  // The pen event happened a third of the way into block 10's period; the control thread hands it
+  // over before block 11 renders, which plays it at the same place in its own period.
+  const std::int64_t event_ns = 10 * kBlockNs + kBlockNs / 3;
+  engine.OnPen(Pen(event_ns, 960, 540, true));
+  const auto out = RenderBlocks(engine, 1);
+  int first = -1;
+  for (int i = 0; i < kFrames; ++i) {
+    if (out[static_cast<std::size_t>(2 * i)] != 0.0f ||
+        out[static_cast<std::size_t>(2 * i + 1)] != 0.0f) {
+      first = i;
+      break;
+    }
+  }
+  CHECK(first >= kFrames / 3);  // not before the event's own place in the period
+  CHECK(first <= kFrames / 3 + 8);
+  const auto stats = engine.audio_stats();
+  // The pen-to-sample delay is one buffer, to within a frame.
+  CHECK(std::abs(static_cast<double>(stats.pen_to_sample_last_ns) - 1e9 * kFrames / kFs) <
+        1e9 / kFs + 1.0);
+  CHECK(stats.commands == 1);
+}
+
+TEST_CASE("engine: a texture switch fades the old sound out instead of cutting it", "[kiosk]") {
+  KioskEngine engine(Options());
+  engine.SetAudioRunning(true);
+  engine.OnToken(0, 1);  // broken glass: rings after the pen lifts
+  engine.Tick(0);
+  RenderBlocks(engine, 200);
+  std::int64_t t = 200 * kBlockNs;
+  std::vector<float> audio;
+  for (int i = 0; i < 120; ++i) {  // a 0.32 s stroke
+    engine.OnPen(Pen(t, 600 + 3.0 * i, 500, true));
+    const auto block = RenderBlocks(engine, 1);
+    audio.insert(audio.end(), block.begin(), block.end());
+    t += kBlockNs;
+  }
+  engine.OnPen(Pen(t, 960, 500, false));
+  for (int i = 0; i < 4; ++i) {
+    const auto block = RenderBlocks(engine, 1);
+    audio.insert(audio.end(), block.begin(), block.end());
+    t += kBlockNs;
+  }
+  const std::size_t switch_frame = audio.size() / 2;
+  engine.OnToken(t, 3);  // cracked ground, pen up: the new scene is silent
+  engine.Tick(t);
+  const auto after = RenderBlocks(engine, 200);  // 0.53 s: past the 0.45 s fade
+  audio.insert(audio.end(), after.begin(), after.end());
+  const double before_rms = Rms(audio, switch_frame - 480, switch_frame);
+  const double just_after_rms = Rms(audio, switch_frame, switch_frame + 480);
+  REQUIRE(before_rms > 1e-4);                // the glass was ringing
+  CHECK(just_after_rms > 0.4 * before_rms);  // no cut: the old sound is still there...
+  const double later_rms = Rms(audio, audio.size() / 2 - 480, audio.size() / 2);
+  CHECK(later_rms < 0.02 * before_rms);  // ...and gone once the fade is over
+  CHECK(engine.audio_stats().switches >= 2);
+}
+
+TEST_CASE("engine: a recording becomes the surface, and the idle reset wipes it and the recorder",
+          "[kiosk]") {
+  sas::platform::FakeAudioInput mic;
+  KioskEngine engine(Options());
+  engine.SetRecorder(&mic.recorder());
+  engine.SetAudioRunning(true);
+  std::int64_t t = 0;
+  const auto advance = [&](double seconds) {
+    for (double s = 0.0; s < seconds; s += kFrames / kFs) {
+      engine.Tick(t);
+      if (mic.recorder().Recording()) {
+        std::vector<float> block(kFrames);
+        for (int i = 0; i < kFrames; ++i) {
+          const double time_s = static_cast<double>(t) * 1e-9 + i / kFs;
+          block[static_cast<std::size_t>(i)] = static_cast<float>(
+              0.3 * std::sin(2 * M_PI * 220 * time_s) * std::sin(2 * M_PI * 2 * time_s));
+        }
+        mic.Feed(block.data(), block.size());
+      }
+      RenderBlocks(engine, 1);
+      t += kBlockNs;
+    }
+  };
+  engine.OnRecordButton(t, true);
+  engine.OnRecordButton(t + 1'000'000, false);
+  advance(3.0 + 5.2);  // countdown, then the whole 5 s take
+  REQUIRE(engine.has_voice());
+  REQUIRE(engine.surface().voice);
+  REQUIRE(engine.voice_image() != nullptr);
+  CHECK(mic.recorder().Take().samples.empty());  // the raw take is gone once it is a surface
+  advance(5.5);                                  // nobody touches it
+  CHECK_FALSE(engine.has_voice());
+  CHECK(engine.voice_image() == nullptr);
+  CHECK_FALSE(engine.surface().voice);
+  CHECK(engine.surface().texture == engine.default_texture());
+}
+
+TEST_CASE("engine: strokes per texture survive a restart through the counters file", "[kiosk]") {
+  sas::test::TempDir dir;
+  auto options = Options();
+  options.counters_path = dir.file("counters.toml");
+  {
+    KioskEngine engine(options);
+    engine.SetAudioRunning(true);
+    engine.OnToken(0, 0);  // bubble wrap
+    for (int stroke = 0; stroke < 3; ++stroke) {
+      const std::int64_t t = (stroke + 1) * 100 * kBlockNs;
+      engine.OnPen(Pen(t, 500, 500, true));
+      engine.OnPen(Pen(t + kBlockNs, 520, 500, true));
+      engine.OnPen(Pen(t + 2 * kBlockNs, 540, 500, false));
+    }
+    std::string error;
+    REQUIRE(engine.SaveCounters(&error));
+  }
+  KioskEngine restarted(options);
+  const auto& counters = restarted.session().counters();
+  CHECK(counters.strokes_per_texture.at(0) == 3);
+  CHECK(counters.sessions == 1);
+}
