@@ -129,6 +129,14 @@ const std::vector<KeySpec>& Schema() {
       {"pen", "seat", Text(&KioskConfig::pen_seat)},
       {"gains", "sound_gain_db", Real(&KioskConfig::sound_gain_db, -60.0, 40.0)},
       {"gains", "haptic_gain_db", Real(&KioskConfig::haptic_gain_db, -60.0, 40.0)},
+      {"gains", "haptic_ceiling_db", Real(&KioskConfig::haptic_ceiling_db, -40.0, 0.0)},
+      {"gains", "low_vibration_db", Real(&KioskConfig::low_vibration_db, 0.0, 40.0)},
+      {"gains", "ambient_adaptive", Flag(&KioskConfig::ambient_adaptive)},
+      {"gains", "ambient_min_db", Real(&KioskConfig::ambient_min_db, -20.0, 30.0)},
+      {"gains", "ambient_max_db", Real(&KioskConfig::ambient_max_db, -20.0, 30.0)},
+      {"gains", "ambient_per_db", Real(&KioskConfig::ambient_per_db, 0.0, 2.0)},
+      {"gains", "ambient_quiet_dbfs", Real(&KioskConfig::ambient_quiet_dbfs, -120.0, 0.0)},
+      {"gains", "ambient_rate_db_per_s", Real(&KioskConfig::ambient_rate_db_per_s, 0.01, 20.0)},
       {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},
       {"session", "default_texture", Text(&KioskConfig::default_texture)},
   };
@@ -145,7 +153,8 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
     throw ConfigError(source_name + ":" + std::to_string(error.source().begin.line) +
                       ": syntax error: " + std::string(error.description()));
   }
-  KioskConfig config;  // filled on a copy: a bad file changes nothing
+  KioskConfig config;     // filled on a copy: a bad file changes nothing
+  std::string where_max;  // for the cross-key check below
   for (const auto& [table_key, table_node] : root) {
     const std::string table_name(table_key.str());
     const auto* table = table_node.as_table();
@@ -162,7 +171,16 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
       }
       if (spec == nullptr) throw ConfigError(where + "unknown key");
       spec->apply(node, config, where);
+      if (dotted == "gains.ambient_max_db" ||
+          (where_max.empty() && dotted == "gains.ambient_min_db"))
+        where_max = where;
     }
+  }
+  if (config.ambient_min_db > config.ambient_max_db) {
+    std::ostringstream message;
+    message << where_max << "gains.ambient_min_db (" << config.ambient_min_db
+            << ") must not exceed gains.ambient_max_db (" << config.ambient_max_db << ")";
+    throw ConfigError(message.str());
   }
   return config;
 }

@@ -41,6 +41,17 @@ struct KioskConfig {
   // [gains] — deliberately high for a loud room; the output limiters keep samples in [-1, 1].
   double sound_gain_db = 12.0;
   double haptic_gain_db = 6.0;
+  double haptic_ceiling_db = 0.0;  // transducer peak ceiling, dBFS (<= 0): the haptic limiter's top
+  double low_vibration_db = 12.0;  // haptic attenuation while staff low-vibration mode is on, dB
+  // Ambient-adaptive sound gain (ambient_gain.h): while idle, the microphone's room level moves an
+  // extra sound gain between ambient_min_db and ambient_max_db, ambient_per_db dB per dB of room
+  // level above ambient_quiet_dbfs, changing at most ambient_rate_db_per_s.
+  bool ambient_adaptive = false;
+  double ambient_min_db = 0.0;
+  double ambient_max_db = 12.0;
+  double ambient_per_db = 0.5;
+  double ambient_quiet_dbfs = -60.0;
+  double ambient_rate_db_per_s = 1.0;
   // [session]
   double idle_timeout_s = 60.0;
   std::string default_texture = "wooden_board";

@@ -192,7 +192,7 @@ RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
   return options;
 }
 
-RenderSummary Render(const RenderOptions& options) {
+RenderSummary RenderToMemory(const RenderOptions& options, std::vector<float>& audio) {
   if (options.block_frames < 1) throw RenderError("block size must be positive");
   RenderSummary summary;
   std::string material_name = options.material;
@@ -247,7 +247,7 @@ RenderSummary Render(const RenderOptions& options) {
   }
   const auto total_frames =
       static_cast<std::int64_t>(std::ceil((summary.gesture_s + options.tail_s) * fs_hz));
-  std::vector<float> audio(static_cast<std::size_t>(total_frames) * 2, 0.0f);
+  audio.assign(static_cast<std::size_t>(total_frames) * 2, 0.0f);
   std::vector<synth::ProbeCommand> block_commands;
   block_commands.reserve(commands.size());
   std::size_t next_command = 0;
@@ -305,8 +305,15 @@ RenderSummary Render(const RenderOptions& options) {
         summary.tail_end_peak, static_cast<double>(std::abs(audio[static_cast<std::size_t>(i)])));
   }
 
-  surface::WriteWav(options.out_path, audio.data(), static_cast<std::size_t>(total_frames), 2,
-                    options.sample_rate_hz, options.format);
+  return summary;
+}
+
+RenderSummary Render(const RenderOptions& options) {
+  if (options.out_path.empty()) throw RenderError("no output file given");
+  std::vector<float> audio;
+  const RenderSummary summary = RenderToMemory(options, audio);
+  surface::WriteWav(options.out_path, audio.data(), audio.size() / 2, 2, options.sample_rate_hz,
+                    options.format);
   return summary;
 }
 

@@ -76,6 +76,9 @@ Material FindMaterial(const std::string& name, const std::vector<std::string>& d
 
 // Renders and writes options.out_path. Throws on any problem (nothing is written then).
 RenderSummary Render(const RenderOptions& options);
+// Renders into `audio` (2 interleaved channels: sound, haptic) without writing anything;
+// options.out_path is ignored. Throws on any problem.
+RenderSummary RenderToMemory(const RenderOptions& options, std::vector<float>& audio);
 // "out.wav: 4.10 s, wood on grating, slow stroke | ch1 peak -6.0 dBFS rms -21.3 dBFS | ch2 ..."
 std::string FormatSummary(const RenderOptions& options, const RenderSummary& summary);
 

@@ -10,7 +10,8 @@
 //   picture = "picture.png"              height_map = "height.png"
 //   height_scale_mm = 4.0                # height.png value 65535 = this many millimetres
 //   relief_mm = 0.5                      # height of the strongest ridge in the picture's field
-//   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0
+//   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
+//            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
 //   origin_y_px

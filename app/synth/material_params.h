@@ -87,6 +87,14 @@ struct OutputParams {
   bool haptic_enabled = true;   // false when no transducer is configured: the path is skipped
   double haptic_low_hz = 40.0;  // transducer band
   double haptic_high_hz = 800.0;
+  // Peak ceiling of the transducer channel (linear, (0, 1]): the haptic limiter saturates here
+  // instead of at full scale, so no gain can drive the transducer harder (sensitive visitors).
+  double haptic_ceiling = 1.0;
+  // Haptic factor while the staff-selected low-vibration mode is on (linear, [0, 1]); applied
+  // before the limiter, ramped over kLowVibrationRampS. Switched at run time by
+  // Scene::SetLowVibration(); `low_vibration` is the state after Prepare().
+  double low_vibration_gain = 0.25;
+  bool low_vibration = false;
 };
 
 struct MaterialParams {

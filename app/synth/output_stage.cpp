@@ -42,6 +42,11 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   sound_gain_ = finite_or(params.sound_gain, 0.0);
   haptic_gain_ = finite_or(params.haptic_gain, 0.0);
   haptic_enabled_ = params.haptic_enabled;
+  haptic_ceiling_ = std::clamp(finite_or(params.haptic_ceiling, 1.0), 1e-6, 1.0);
+  haptic_drive_ = haptic_gain_ / haptic_ceiling_;
+  low_vibration_gain_ = std::clamp(finite_or(params.low_vibration_gain, 1.0), 0.0, 1.0);
+  ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
+  low_vibration_ = params.low_vibration;
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
@@ -57,6 +62,18 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
 
 void OutputStage::Reset() {
   for (auto& s : sections_) s.s1 = s.s2 = 0.0;
+  // Silent after a reset, so the trim may jump to where the mode says.
+  trim_ = trim_target_ = low_vibration_ ? low_vibration_gain_ : 1.0;
+  trim_step_ = 0.0;
+}
+
+void OutputStage::SetLowVibration(bool on) {
+  low_vibration_ = on;
+  const double target = on ? low_vibration_gain_ : 1.0;
+  if (target == trim_target_) return;
+  trim_target_ = target;
+  trim_step_ = (trim_target_ - trim_) / ramp_samples_;
+  if (trim_step_ == 0.0) trim_ = trim_target_;
 }
 
 double OutputStage::SoftLimit(double x) {

@@ -5,9 +5,13 @@
 //   ch 1: NaN/Inf -> 0, × sound_gain, soft limiter
 //   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 16th-order
 //         Butterworth low-pass, RBJ biquads: white noise keeps < -40 dB of its energy above 1 kHz),
-//         × haptic_gain, soft limiter; skipped (zeros) when haptic_enabled is false.
+//         × haptic_gain × low-vibration trim, soft limiter scaled to the haptic ceiling
+//         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
+//         haptic_enabled is false.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
+// Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
+// kLowVibrationRampS (no click on the transducer) and then holds the exact value.
 
 #include <array>
 #include <cmath>
@@ -30,6 +34,7 @@ struct Biquad {
 class OutputStage {
  public:
   static constexpr double kKnee = 0.5;
+  static constexpr double kLowVibrationRampS = 0.02;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();
@@ -50,8 +55,16 @@ class OutputStage {
       Reset();
       y = 0.0;
     }
-    *haptic = static_cast<float>(SoftLimit(haptic_gain_ * y));
+    if (trim_ != trim_target_) {
+      trim_ += trim_step_;
+      if ((trim_step_ > 0.0) == (trim_ >= trim_target_)) trim_ = trim_target_;
+    }
+    *haptic = static_cast<float>(haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y));
   }
+
+  // Real-time safe: starts the ramp to the low-vibration trim (on) or back to 1 (off).
+  void SetLowVibration(bool on);
+  bool low_vibration() const { return low_vibration_; }
 
   // Largest magnitude held in the filter state (for idle detection).
   double FilterActivity() const;
@@ -61,6 +74,14 @@ class OutputStage {
   std::array<Biquad, kSections> sections_{};
   double sound_gain_ = 1.0;
   double haptic_gain_ = 1.0;
+  double haptic_ceiling_ = 1.0;
+  double haptic_drive_ = 1.0;  // haptic_gain_ / haptic_ceiling_
+  double low_vibration_gain_ = 0.25;
+  double ramp_samples_ = 960.0;
+  bool low_vibration_ = false;
+  double trim_ = 1.0;
+  double trim_target_ = 1.0;
+  double trim_step_ = 0.0;
   bool haptic_enabled_ = true;
 };
 

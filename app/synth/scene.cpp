@@ -2,6 +2,7 @@
 #include "synth/scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 
@@ -71,6 +72,8 @@ struct Scene::Impl {
   ProbeDynamics probe{};
   SurfaceReader reader{};
   OutputStage output{};
+  // Written by the control thread (Scene::SetLowVibration), read once per block by Process().
+  std::atomic<bool> low_vibration{false};
 
   // Gesture state set by the last command.
   ProbeCommand gesture{};
@@ -97,6 +100,8 @@ struct Scene::Impl {
   void Reset() {
     modes.Reset();
     probe = ProbeDynamics{};
+    // A reset scene is silent: the transducer trim may jump to the requested mode at once.
+    output.SetLowVibration(low_vibration.load(std::memory_order_relaxed));
     output.Reset();
     gesture = ProbeCommand{};
     x_m = y_m = 0.0;
@@ -241,6 +246,7 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.modes.Prepare(m.resonator, s.fs, s.config.substeps);
   s.reader.Prepare(surface);
   s.output.Prepare(output, s.fs);
+  s.low_vibration.store(output.low_vibration, std::memory_order_relaxed);
   s.Reset();
 }
 
@@ -252,6 +258,10 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
                     int frames) {
   DenormalGuard guard;
   Impl& s = *impl_;
+  if (const bool low = s.low_vibration.load(std::memory_order_relaxed);
+      low != s.output.low_vibration()) {
+    s.output.SetLowVibration(low);
+  }
   int next = 0;
   if (commands == nullptr) command_count = 0;
   for (int f = 0; f < frames; ++f) {
@@ -262,6 +272,14 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
     }
     s.RenderFrame(interleaved_out + 2 * static_cast<std::ptrdiff_t>(f));
   }
+}
+
+void Scene::SetLowVibration(bool on) {
+  impl_->low_vibration.store(on, std::memory_order_relaxed);
+}
+
+bool Scene::low_vibration() const {
+  return impl_->low_vibration.load(std::memory_order_relaxed);
 }
 
 double Scene::ResonatorEnergy() const {

@@ -60,6 +60,13 @@ class Scene {
   // rendered. Non-finite command fields are ignored or replaced by safe values. Real-time safe.
   void Process(const ProbeCommand* commands, int command_count, float* interleaved_out, int frames);
 
+  // The staff-selected low-vibration mode (OutputParams::low_vibration_gain on the transducer
+  // channel). Callable from any thread while another runs Process(): a relaxed atomic store that
+  // Process() reads once per block; the change then ramps over 20 ms. Prepare() sets it from
+  // OutputParams::low_vibration.
+  void SetLowVibration(bool on);
+  bool low_vibration() const;
+
   // Vibrational energy of the resonator (J), cheap (O(modes)).
   double ResonatorEnergy() const;
   // Total mechanical energy (J): resonator + probe kinetic + contact potential k x^(α+1)/(α+1) +

@@ -1,7 +1,10 @@
 // Configuration validation: every problem names file, line and key; nothing half-applied.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "kiosk/kiosk_config.h"
+#include "kiosk/output_gains.h"
 #include "sas/version.h"
 #include "support/temp_dir.h"
 
@@ -68,6 +71,61 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.gpio_lines == defaults.gpio_lines);
   CHECK(shipped.mcp2221_path == defaults.mcp2221_path);
   CHECK(shipped.pen_seat == defaults.pen_seat);
+  CHECK(shipped.haptic_ceiling_db == defaults.haptic_ceiling_db);
+  CHECK(shipped.low_vibration_db == defaults.low_vibration_db);
+  CHECK(shipped.ambient_adaptive == defaults.ambient_adaptive);
+  CHECK(shipped.ambient_min_db == defaults.ambient_min_db);
+  CHECK(shipped.ambient_max_db == defaults.ambient_max_db);
+  CHECK(shipped.ambient_per_db == defaults.ambient_per_db);
+  CHECK(shipped.ambient_quiet_dbfs == defaults.ambient_quiet_dbfs);
+  CHECK(shipped.ambient_rate_db_per_s == defaults.ambient_rate_db_per_s);
+}
+
+TEST_CASE("vibration ceiling, low-vibration and ambient gain keys are validated", "[kiosk]") {
+  const auto config = ParseKioskConfig(
+      "[gains]\nhaptic_ceiling_db = -9.5\nlow_vibration_db = 18\nambient_adaptive = true\n"
+      "ambient_min_db = -3\nambient_max_db = 9\nambient_per_db = 0.75\n"
+      "ambient_quiet_dbfs = -55\nambient_rate_db_per_s = 0.5\n",
+      "k.toml");
+  CHECK(config.haptic_ceiling_db == -9.5);
+  CHECK(config.low_vibration_db == 18.0);
+  CHECK(config.ambient_adaptive);
+  CHECK(config.ambient_min_db == -3.0);
+  CHECK(config.ambient_max_db == 9.0);
+  CHECK(config.ambient_per_db == 0.75);
+  CHECK(config.ambient_quiet_dbfs == -55.0);
+  CHECK(config.ambient_rate_db_per_s == 0.5);
+  // A ceiling above full scale would not be a ceiling.
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nhaptic_ceiling_db = 3\n", "k.toml"),
+                    Catch::Contains("k.toml:2") && Catch::Contains("gains.haptic_ceiling_db") &&
+                        Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nlow_vibration_db = -6\n", "k.toml"),
+                    Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nambient_adaptive = \"yes\"\n", "k.toml"),
+                    Catch::Contains("true or false"));
+  CHECK_THROWS_WITH(
+      ParseKioskConfig("[gains]\nambient_min_db = 10\nambient_max_db = 4\n", "k.toml"),
+      Catch::Contains("k.toml:3") && Catch::Contains("must not exceed"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nambient_min_db = 20\n", "k.toml"),
+                    Catch::Contains("must not exceed"));  // above the default maximum
+}
+
+TEST_CASE("kiosk output parameters add configuration, texture and ambient gains in dB", "[kiosk]") {
+  sas::kiosk::KioskConfig config;
+  config.sound_gain_db = 12.0;
+  config.haptic_gain_db = 6.0;
+  config.haptic_ceiling_db = -6.0;
+  config.low_vibration_db = 20.0;
+  sas::surface::TextureGains texture;
+  texture.sound_gain_db = 3.0;
+  texture.haptic_gain_db = -1.0;
+  const auto p = sas::kiosk::KioskOutputParams(config, texture, 2.0);
+  CHECK(p.sound_gain == Approx(std::pow(10.0, 17.0 / 20.0)));
+  CHECK(p.haptic_gain == Approx(std::pow(10.0, 5.0 / 20.0)));
+  CHECK(p.haptic_ceiling == Approx(0.501187).epsilon(1e-5));
+  CHECK(p.low_vibration_gain == Approx(0.1));
+  CHECK_FALSE(p.low_vibration);
+  CHECK(sas::kiosk::KioskOutputParams(config, texture, 2.0, true).low_vibration);
 }
 
 TEST_CASE("switch, recording and pen keys are validated by type, choice and list length",

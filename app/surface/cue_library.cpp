@@ -1,0 +1,69 @@
+// Spoken cue files -> RAM (see cue_library.h).
+#include "surface/cue_library.h"
+
+#include <exception>
+#include <filesystem>
+
+#include "surface/audio_file.h"
+
+namespace sas::surface {
+
+const std::vector<std::string>& MessageCueNames() {
+  static const std::vector<std::string> names = {"record_countdown", "too_quiet", "too_loud",
+                                                 "no_microphone", "voice_ready"};
+  return names;
+}
+
+std::vector<std::string> ExpectedCueFiles(const std::vector<std::string>& texture_folders) {
+  std::vector<std::string> files;
+  for (const auto& folder : texture_folders) {
+    files.push_back(folder + "_name.wav");
+    files.push_back(folder + "_description.wav");
+  }
+  for (const auto& name : MessageCueNames()) files.push_back(name + ".wav");
+  return files;
+}
+
+CueLibrary CueLibrary::Load(const std::string& dir, const std::vector<std::string>& texture_folders,
+                            double sample_rate_hz) {
+  CueLibrary library;
+  library.sample_rate_hz_ = sample_rate_hz;
+  AudioReadLimits limits;
+  limits.target_rate_hz = sample_rate_hz;
+  limits.max_duration_s = 30.0;  // a cue is a sentence; anything longer is not one of ours
+  for (const auto& file : ExpectedCueFiles(texture_folders)) {
+    const std::filesystem::path path = std::filesystem::path(dir) / file;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) {
+      library.problems_.push_back(path.string() + ": missing (spoken cue not generated? " +
+                                  "the build needs espeak-ng)");
+      continue;
+    }
+    try {
+      AudioClip clip = ReadAudioFile(path.string(), limits);
+      if (clip.silent) {
+        library.problems_.push_back(path.string() + ": silent");
+        continue;
+      }
+      library.cues_[file.substr(0, file.size() - 4)] = std::move(clip.samples);
+    } catch (const std::exception& e) {
+      library.problems_.push_back(path.string() + ": " + e.what());
+    }
+  }
+  return library;
+}
+
+const std::vector<float>* CueLibrary::Find(const std::string& name) const {
+  const auto it = cues_.find(name);
+  return it == cues_.end() ? nullptr : &it->second;
+}
+
+const std::vector<float>* CueLibrary::TextureName(const std::string& folder) const {
+  return Find(folder + "_name");
+}
+
+const std::vector<float>* CueLibrary::TextureDescription(const std::string& folder) const {
+  return Find(folder + "_description");
+}
+
+}  // namespace sas::surface

@@ -1,0 +1,45 @@
+#pragma once
+// The kiosk's spoken cues (issue 7: for visitors who cannot see the screen), loaded into RAM once
+// at start so playing one never touches the disk. The files are made at build time by
+// textures/cue_maker (espeak-ng speech, 48 kHz mono, loudness-normalised) into <build>/textures/
+// cues/ and installed with the textures (share/sketch-a-scratch/textures/cues/):
+//   <texture folder>_name.wav, <texture folder>_description.wav   one pair per texture
+//   record_countdown.wav  too_quiet.wav  too_loud.wav  no_microphone.wav  voice_ready.wav
+// A missing or unreadable cue is not fatal: it is listed in problems() (for the journal and the
+// staff panel) and Find() returns nullptr for it, so the kiosk simply stays silent there.
+// Set-up only.
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sas::surface {
+
+// The message cues' names (file name without .wav), in a fixed order.
+const std::vector<std::string>& MessageCueNames();
+// Every cue file name (with .wav) the kiosk expects for these texture folders.
+std::vector<std::string> ExpectedCueFiles(const std::vector<std::string>& texture_folders);
+
+class CueLibrary {
+ public:
+  // Loads every expected cue from `dir`, resampled to `sample_rate_hz`. Never throws.
+  static CueLibrary Load(const std::string& dir, const std::vector<std::string>& texture_folders,
+                         double sample_rate_hz = 48000.0);
+
+  // Mono samples of cue `name` ("wooden_board_name", "too_quiet"), or nullptr when not loaded.
+  const std::vector<float>* Find(const std::string& name) const;
+  const std::vector<float>* TextureName(const std::string& folder) const;
+  const std::vector<float>* TextureDescription(const std::string& folder) const;
+
+  double sample_rate_hz() const { return sample_rate_hz_; }
+  std::size_t size() const { return cues_.size(); }
+  // One line per cue that could not be loaded: "<file>: <why>". Empty when all loaded.
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  double sample_rate_hz_ = 48000.0;
+  std::map<std::string, std::vector<float>> cues_;
+  std::vector<std::string> problems_;
+};
+
+}  // namespace sas::surface

@@ -1,0 +1,39 @@
+#pragma once
+// Level measures for matching what visitors hear and feel, used offline (texture calibration, the
+// spoken cues, tests), never on the audio thread:
+//   KWeightedLoudnessDb  ITU-R BS.1770-4 loudness of one channel over one window, ungated, in LUFS:
+//                        K-weighting (a +4 dB high shelf above ~1.7 kHz modelling the head, then
+//                        a ~38 Hz high-pass, the "RLB" curve) -> mean square -> -0.691 + 10 log10.
+//                        Broadcasters normalise programmes with it so that switching channels does
+//                        not jump in level, which is exactly our problem with four textures; it
+//                        tracks perceived loudness of broadband sounds better than plain RMS and
+//                        is far simpler than a full ISO 532 loudness model. The filters are
+//                        designed for any sample rate from the standard's analogue parameters (as
+//                        libebur128 does); at 48 kHz they equal BS.1770's coefficient table.
+//   RmsDb                plain RMS in dB re full scale (for the transducer channel, already
+//                        band-limited to 40–800 Hz by the output stage: a vibration's strength is
+//                        its acceleration amplitude in that band, with no ear to weight it).
+// Both measure [from, to) of the signal but run the filter from sample 0, so the window starts
+// with settled filter state. Silence gives kSilenceDb.
+
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "synth/output_stage.h"
+
+namespace sas::surface {
+
+inline constexpr double kSilenceDb = -200.0;
+
+// The two K-weighting biquads (pre-filter shelf, then RLB high-pass) at `sample_rate_hz`.
+std::array<synth::Biquad, 2> KWeightingFilters(double sample_rate_hz);
+
+// Loudness of `samples[from, to)` (frame indices into a signal with `stride` interleaved channels;
+// pass a pointer offset to pick the channel). `to` is clamped to the signal length.
+double KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz, std::size_t from,
+                           std::size_t to, std::size_t stride = 1);
+double RmsDb(std::span<const float> samples, std::size_t from, std::size_t to,
+             std::size_t stride = 1);
+
+}  // namespace sas::surface

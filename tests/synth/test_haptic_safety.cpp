@@ -1,0 +1,164 @@
+// The transducer channel's protections for sensitive visitors (issue 7): a peak ceiling below full
+// scale that no gain can push the haptic output past, and a low-vibration mode, switched at run
+// time, that lowers the haptic level by exactly its configured amount (after its 20 ms ramp)
+// while the speaker channel stays bit for bit the same.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "synth/output_stage.h"
+#include "synth/scene.h"
+#include "synth_test_support.h"
+
+using namespace sas::synth;
+
+namespace {
+
+constexpr double kFs = 48000.0;
+
+MaterialParams LowModes() {  // modes inside the transducer band, so ch 2 carries real signal
+  MaterialParams m;
+  m.resonator.mode_count = 6;
+  for (int i = 0; i < 6; ++i) {
+    auto& mode = m.resonator.modes[static_cast<std::size_t>(i)];
+    mode.frequency_hz = 90.0 * (i + 1) * (1.0 + 0.11 * i);
+    mode.decay_s = 0.2;
+    mode.mass_kg = 0.02;
+    mode.gain = 1.0;
+  }
+  m.impact.stiffness = 3e7;
+  return m;
+}
+
+std::vector<float> Ridges() {  // 0.6 m of 40 µm ridges
+  std::vector<float> h(4000);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    h[i] = static_cast<float>(20e-6 * (1.0 + std::sin(0.29 * static_cast<double>(i))));
+  }
+  return h;
+}
+
+// A 0.5 s stroke (tip down at frame 0), rendered in 128-frame blocks; `before_block` runs before
+// each block (to switch the mode mid-stroke).
+template <class F>
+std::vector<float> Stroke(Scene& scene, long frames, F before_block) {
+  ProbeCommand c;
+  c.tip_down = true;
+  c.x_m = 0.01;
+  c.velocity_mps = 0.3;
+  c.normal_force_n = 1.0;
+  c.penetration_m = 40e-6;
+  c.width_mm = 0.4;
+  c.landing_speed_mps = 0.2;
+  std::vector<float> out(2 * static_cast<std::size_t>(frames));
+  for (long start = 0; start < frames; start += 128) {
+    before_block(start);
+    const int n = static_cast<int>(std::min<long>(128, frames - start));
+    scene.Process(start == 0 ? &c : nullptr, start == 0 ? 1 : 0,
+                  out.data() + 2 * static_cast<std::size_t>(start), n);
+  }
+  return out;
+}
+
+double ChannelRms(const std::vector<float>& out, int channel, long from, long to) {
+  double sum = 0.0;
+  for (long i = from; i < to; ++i) {
+    const double x = out[static_cast<std::size_t>(2 * i + channel)];
+    sum += x * x;
+  }
+  return std::sqrt(sum / static_cast<double>(to - from));
+}
+
+}  // namespace
+
+TEST_CASE("with exaggerated gains the haptic output never exceeds its ceiling", "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, Ridges());
+  for (const double ceiling_db : {-20.0, -6.0, 0.0}) {
+    OutputParams p;
+    p.sound_gain = 1e3;
+    p.haptic_gain = 1e6;
+    p.haptic_ceiling = std::pow(10.0, ceiling_db / 20.0);
+    Scene scene;
+    scene.Init(kFs);
+    scene.Prepare(LowModes(), p, field.view);
+    const auto out = Stroke(scene, 24000, [](long) {});
+    double haptic_peak = 0.0, sound_peak = 0.0;
+    for (std::size_t i = 0; i < out.size(); i += 2) {
+      sound_peak = std::max(sound_peak, static_cast<double>(std::fabs(out[i])));
+      haptic_peak = std::max(haptic_peak, static_cast<double>(std::fabs(out[i + 1])));
+    }
+    INFO("ceiling " << ceiling_db << " dBFS, haptic peak " << 20.0 * std::log10(haptic_peak));
+    // float rounding of c · SoftLimit(·) < c may land one float ulp above c, never more.
+    CHECK(haptic_peak <= static_cast<float>(p.haptic_ceiling));
+    CHECK(haptic_peak > 0.95 * p.haptic_ceiling);  // the gain really pushed it to the ceiling
+    CHECK(sound_peak > 0.95);                      // the ceiling is the transducer's only
+  }
+}
+
+TEST_CASE(
+    "low-vibration mode lowers the haptic RMS by its configured amount and leaves the sound "
+    "channel unchanged",
+    "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, Ridges());
+  const double attenuation_db = 12.0;
+  OutputParams p;
+  p.low_vibration_gain = std::pow(10.0, -attenuation_db / 20.0);
+  const long frames = 24000;
+  const long switch_frame = 6016;  // a block boundary; the ramp then takes 960 frames
+  Scene normal, low;
+  for (Scene* s : {&normal, &low}) {
+    s->Init(kFs);
+    s->Prepare(LowModes(), p, field.view);
+  }
+  REQUIRE_FALSE(low.low_vibration());
+  const auto a = Stroke(normal, frames, [](long) {});
+  const auto b = Stroke(low, frames, [&](long start) {
+    if (start == switch_frame) low.SetLowVibration(true);
+  });
+  CHECK(low.low_vibration());
+  for (long i = 0; i < frames; ++i) {  // speaker channel: identical samples
+    REQUIRE(a[static_cast<std::size_t>(2 * i)] == b[static_cast<std::size_t>(2 * i)]);
+  }
+  // Before the switch nothing changes; after the ramp the transducer is exactly 12 dB lower.
+  CHECK(ChannelRms(b, 1, 0, switch_frame) == ChannelRms(a, 1, 0, switch_frame));
+  const long settled = switch_frame + 960;
+  const double ratio_db =
+      20.0 * std::log10(ChannelRms(b, 1, settled, frames) / ChannelRms(a, 1, settled, frames));
+  CHECK(ChannelRms(a, 1, settled, frames) > 1e-4);  // there is vibration to lower
+  CHECK(ratio_db == Approx(-attenuation_db).margin(0.01));
+  // The ramp never steps: neighbouring haptic samples differ by no more than in normal mode + a
+  // bit.
+  double max_step_a = 0.0, max_step_b = 0.0;
+  for (long i = switch_frame; i < settled; ++i) {
+    const auto k = static_cast<std::size_t>(2 * i + 1);
+    max_step_a = std::max(max_step_a, static_cast<double>(std::fabs(a[k] - a[k - 2])));
+    max_step_b = std::max(max_step_b, static_cast<double>(std::fabs(b[k] - b[k - 2])));
+  }
+  CHECK(max_step_b <= max_step_a * 1.01);
+
+  // Switched off, a reset scene renders exactly like one that never was in low-vibration mode.
+  low.SetLowVibration(false);
+  low.Reset();
+  normal.Reset();
+  const auto c = Stroke(low, 4800, [](long) {});
+  const auto d = Stroke(normal, 4800, [](long) {});
+  CHECK(std::memcmp(c.data(), d.data(), c.size() * sizeof(float)) == 0);
+}
+
+TEST_CASE("the output stage holds the haptic ceiling for any finite input", "[dsp]") {
+  OutputParams p;
+  p.haptic_gain = 1e12;
+  p.haptic_ceiling = 0.1;
+  OutputStage stage;
+  stage.Prepare(p, kFs);
+  float peak = 0.0f;
+  for (int n = 0; n < 48000; ++n) {
+    const double x = 1e3 * std::sin(0.013 * n) * std::sin(0.0007 * n * n);
+    float sound = 0.0f, haptic = 0.0f;
+    stage.Process(x, &sound, &haptic);
+    peak = std::max(peak, std::fabs(haptic));
+  }
+  CHECK(peak <= static_cast<float>(p.haptic_ceiling));
+  CHECK(peak > 0.099f);
+}
