@@ -10,6 +10,7 @@
 
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/counters_file.h"
+#include "kiosk/output_gains.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
 #include "platform/log/log.h"
@@ -37,10 +38,6 @@ constexpr double kPopImpulseNs = 0.002;
 // saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
 constexpr double kBubblePressMaxForceN = 4.0;
 constexpr double kCountersSaveIntervalS = 10.0;
-
-double DbToLinear(double db) {
-  return std::pow(10.0, db / 20.0);
-}
 
 std::vector<std::string> DataDirs(const std::string& sub) {
   std::vector<std::string> dirs;
@@ -526,9 +523,10 @@ void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
   const int slot = FreeSlot();
   if (slot < 0) return;
   auto& target = slots_[static_cast<std::size_t>(slot)];
-  synth::OutputParams output;
-  output.sound_gain = DbToLinear(options_.config.sound_gain_db + gains.sound_gain_db);
-  output.haptic_gain = DbToLinear(options_.config.haptic_gain_db + gains.haptic_gain_db);
+  // Configuration + texture loudness-matching gains + the ambient gain, the transducer ceiling and
+  // the staff's low-vibration mode: one builder for every path (output_gains.h).
+  const synth::OutputParams output =
+      KioskOutputParams(options_.config, gains, ambient_gain_db_, low_vibration_);
   target.field = field;
   target.scene.Prepare(material.params, output, target.field->View());
   current_field_ = std::move(field);
@@ -555,6 +553,19 @@ void KioskEngine::SetAudioRunning(bool running) {
     }
   }
   playing_clip_ = -1;
+}
+
+void KioskEngine::SetLowVibration(bool on) {
+  // Every prepared scene follows at once (an atomic each scene reads per block, 20 ms ramp);
+  // scenes prepared later get it through their output parameters.
+  low_vibration_ = on;
+  for (auto& slot : slots_) slot.scene.SetLowVibration(on);
+}
+
+void KioskEngine::SetAmbientGainDb(double gain_db) {
+  // Takes effect with the next prepared scene (a texture switch or the idle reset): the ambient
+  // gain only moves while nobody is at the box, so no stroke hears it change.
+  ambient_gain_db_ = std::isfinite(gain_db) ? gain_db : 0.0;
 }
 
 bool KioskEngine::SaveCounters(std::string* error) const {

@@ -119,6 +119,12 @@ class KioskEngine final : public platform::AudioRenderer {
   void PlayTestTone();
   void PlayTransducerSweep();
   bool SaveCounters(std::string* error) const;
+  // Staff's low-vibration mode (configuration gains.low_vibration_db): switches at once, ramped.
+  void SetLowVibration(bool on);
+  bool low_vibration() const { return low_vibration_; }
+  // Ambient-adaptive sound gain (ambient_gain.h), dB on top of the configured gains.
+  void SetAmbientGainDb(double gain_db);
+  double ambient_gain_db() const { return ambient_gain_db_; }
 
   // ---- views (control thread)
   const Session& session() const { return session_; }
@@ -198,6 +204,8 @@ class KioskEngine final : public platform::AudioRenderer {
   platform::VoiceRecorder* recorder_ = nullptr;
   bool recording_ = false;
   std::string cues_dir_;
+  bool low_vibration_ = false;
+  double ambient_gain_db_ = 0.0;
   std::vector<Clip> clips_;
   std::vector<int> name_cues_, description_cues_;  // per texture, -1 when absent
   std::array<int, 7> message_cues_{};              // per Cue (name/description unused)

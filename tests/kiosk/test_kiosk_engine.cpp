@@ -172,3 +172,45 @@ TEST_CASE("engine: strokes per texture survive a restart through the counters fi
   CHECK(counters.strokes_per_texture.at(0) == 3);
   CHECK(counters.sessions == 1);
 }
+
+namespace {
+
+// One 0.32 s stroke across wooden board (the default texture) rendered through the engine;
+// returns the stereo output during it.
+std::vector<float> StrokeOnDefaultTexture(bool low_vibration) {
+  KioskEngine engine(Options());
+  engine.SetAudioRunning(true);
+  engine.SetLowVibration(low_vibration);
+  RenderBlocks(engine, 40);  // past the 20 ms ramp
+  std::int64_t t = 40 * kBlockNs;
+  std::vector<float> audio;
+  for (int i = 0; i < 120; ++i) {
+    engine.OnPen(Pen(t, 600 + 3.0 * i, 500, true));
+    const auto block = RenderBlocks(engine, 1);
+    audio.insert(audio.end(), block.begin(), block.end());
+    t += kBlockNs;
+  }
+  return audio;
+}
+
+double ChannelRms(const std::vector<float>& stereo, int channel) {
+  double sum = 0.0;
+  for (std::size_t i = static_cast<std::size_t>(channel); i < stereo.size(); i += 2) {
+    sum += static_cast<double>(stereo[i]) * stereo[i];
+  }
+  return std::sqrt(sum / static_cast<double>(stereo.size() / 2));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "engine: staff low-vibration mode lowers the transducer by its configured dB and leaves "
+    "the speaker as it was",
+    "[kiosk]") {
+  const auto normal = StrokeOnDefaultTexture(false);
+  const auto gentle = StrokeOnDefaultTexture(true);
+  REQUIRE(ChannelRms(normal, 1) > 1e-4);  // the stroke is felt
+  const double drop_db = 20.0 * std::log10(ChannelRms(gentle, 1) / ChannelRms(normal, 1));
+  CHECK(drop_db == Approx(-Options().config.low_vibration_db).margin(0.5));
+  CHECK(ChannelRms(gentle, 0) == Approx(ChannelRms(normal, 0)).epsilon(1e-6));
+}
