@@ -369,7 +369,7 @@ void Text(cv::Mat& img, const std::string& s, cv::Point p, double scale = 0.5,
 // One panel: log-log error against cost, the Pareto front (cheapest configuration for each
 // error level, over all schemes) as a grey staircase.
 void DrawPanel(cv::Mat& img, cv::Rect area, const std::string& title,
-               const std::vector<Series>& series) {
+               const std::vector<Series>& series, double floor = 0.0) {
   double x_lo = 1e300, x_hi = 0, y_lo = 1e300, y_hi = 0;
   for (const auto& s : series) {
     for (auto [x, y] : s.points) {
@@ -381,6 +381,10 @@ void DrawPanel(cv::Mat& img, cv::Rect area, const std::string& title,
     }
   }
   if (!(x_hi > 0)) return;
+  if (floor > 0.0) {
+    y_lo = std::min(y_lo, floor);
+    y_hi = std::max(y_hi, floor);
+  }
   // Decade-aligned axes with a little room around the points.
   const double lx0 = std::floor(std::log10(x_lo) - 0.1),
                lx1 = std::max(std::ceil(std::log10(x_hi) + 0.1), lx0 + 1);
@@ -424,6 +428,13 @@ void DrawPanel(cv::Mat& img, cv::Rect area, const std::string& title,
     const cv::Rect where(area.x + 4, plot.y + plot.height / 2 - 100, rotated.cols, rotated.rows);
     if ((where & cv::Rect(0, 0, img.cols, img.rows)) == where) rotated.copyTo(img(where));
   }
+  if (floor > 0.0) {  // dashed: the error no configuration can be told apart below
+    const int y = to_px(std::pow(10.0, lx0), floor).y;
+    for (int x = plot.x; x < plot.x + plot.width; x += 12)
+      cv::line(img, cv::Point(x, y), cv::Point(std::min(x + 6, plot.x + plot.width), y),
+               cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+    Text(img, "chaos floor", cv::Point(plot.x + 6, y - 6), 0.42, cv::Scalar(60, 60, 60));
+  }
   // Pareto front over all points: sorted by cost, keep each point better than all cheaper ones.
   std::vector<std::pair<double, double>> all;
   for (const auto& s : series)
@@ -452,15 +463,20 @@ void DrawPanel(cv::Mat& img, cv::Rect area, const std::string& title,
   }
 }
 
-void WritePlot(const std::string& path,
-               const std::vector<std::pair<std::string, std::vector<Series>>>& panels,
+struct Panel {
+  std::string title;
+  std::vector<Series> series;
+  double floor = 0.0;
+};
+
+void WritePlot(const std::string& path, const std::vector<Panel>& panels,
                const std::vector<synth::ContactScheme>& schemes, const std::string& reference) {
   const int panel_w = 560, panel_h = 470;
   cv::Mat img(panel_h + 70, panel_w * static_cast<int>(panels.size()), CV_8UC3,
               cv::Scalar(255, 255, 255));
   for (std::size_t i = 0; i < panels.size(); ++i) {
-    DrawPanel(img, cv::Rect(static_cast<int>(i) * panel_w, 0, panel_w, panel_h), panels[i].first,
-              panels[i].second);
+    DrawPanel(img, cv::Rect(static_cast<int>(i) * panel_w, 0, panel_w, panel_h), panels[i].title,
+              panels[i].series, panels[i].floor);
   }
   int x = 20;
   const int y = panel_h + 35;
@@ -851,7 +867,8 @@ int main(int argc, char** argv) {
     }
   }
   std::ostringstream md;
-  md << "Measured by `contact_bench" << (opt.quick ? " --quick" : "") << "` (best of " << opt.reps
+  md << "Measured by `contact_bench" << (opt.quick ? " --quick" : "")
+     << "` (thread CPU time, best of " << opt.reps
      << " after a warm-up, one core of the build machine, 48 kHz). "
      << "Impact: worst relative restitution error over " << phases
      << " onset phases and μ·v_in ∈ {0.1, 1} against the closed form, m = 10 g, α = 1.5, "
@@ -915,7 +932,7 @@ int main(int argc, char** argv) {
     }
     return out;
   };
-  std::vector<std::pair<std::string, std::vector<Series>>> panels;
+  std::vector<Panel> panels;
   panels.push_back({"impact: worst error over k 1e6-1e12", series_for([](const Agg& a) {
                       return std::pair{a.impact_ns / std::max(a.impact_n, 1),
                                        *std::max_element(a.impact_err, a.impact_err + 4)};
@@ -925,7 +942,8 @@ int main(int argc, char** argv) {
                     })});
   panels.push_back({"full kiosk scene, 32 modes", series_for([](const Agg& a) {
                       return std::pair{a.scene_ns, a.scene_ref ? 0.0 : a.scene_err};
-                    })});
+                    }),
+                    scene_floor});
   WritePlot(png_path, panels, schemes, SchemeName(reference));
 
   if (!opt.readme.empty()) {
