@@ -28,7 +28,8 @@ ModeStep ComputeModeStep(double frequency_hz, double decay_s, double mass_kg, do
   return m;
 }
 
-void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps) {
+void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps,
+                         bool keep_inaudible) {
   count = 0;
   sub_compliance = 0.0;
   full_compliance = 0.0;
@@ -37,12 +38,12 @@ void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, i
   const int n = params.mode_count < kMaxModes ? params.mode_count : kMaxModes;
   for (int i = 0; i < n; ++i) {
     const ModeParams& mode = params.modes[static_cast<std::size_t>(i)];
-    if (!(mode.frequency_hz > 0.0) ||
-        !(mode.frequency_hz < kMaxModeFrequencyRatio * sample_rate_hz))
+    if (!(mode.frequency_hz > 0.0) || !std::isfinite(mode.frequency_hz) || !(mode.mass_kg > 0.0) ||
+        !(mode.decay_s > 0.0) || !std::isfinite(mode.gain))
       continue;
-    if (!(std::fabs(mode.gain) >= kNegligibleGain) || !(mode.mass_kg > 0.0) ||
-        !(mode.decay_s > 0.0))
-      continue;
+    const bool audible = mode.frequency_hz < kMaxModeFrequencyRatio * sample_rate_hz &&
+                         std::fabs(mode.gain) >= kNegligibleGain;
+    if (!audible && !keep_inaudible) continue;
     const auto k = static_cast<std::size_t>(count);
     const double omega_d = 2.0 * std::numbers::pi * mode.frequency_hz;
     full[k] = ComputeModeStep(mode.frequency_hz, mode.decay_s, mode.mass_kg, step_s);

@@ -45,8 +45,10 @@ struct ModalState {
   double full_compliance = 0.0;  // Σ b1 over a full sample
 
   // Fills the packed arrays from `params` (fs in Hz, `substeps` contact sub-steps per sample)
-  // and zeroes the state.
-  void Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps);
+  // and zeroes the state. `keep_inaudible` computes the modes at or above 0.45 fs and those with
+  // negligible gain too (tests comparing against the skip).
+  void Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps,
+               bool keep_inaudible = false);
   void Reset() {
     q.fill(0.0);
     v.fill(0.0);

@@ -55,8 +55,11 @@ double FiniteOr(double v, double fallback) {
   return std::isfinite(v) ? v : fallback;
 }
 
-// Pickup amplitude (full scale = 1) below which the resonator counts as silent: -120 dBFS.
-constexpr double kSilence = 1e-6;
+// Friction skip (SceneSkips::relaxed_friction): the pickup amplitude that the skipped friction
+// could at most have caused — from releasing the bristle's static force σ0 z, or from stopping the
+// resonator's residual motion at the contact — stays below this (two orders below the 1e-7 the
+// skip may change the output by).
+constexpr double kFrictionSkipAmplitude = 1e-9;
 constexpr std::uint64_t kNoiseSeed = 0x9E3779B97F4A7C15ull;
 // Commanded speeds are clamped here (m/s): far beyond any hand, still finite arithmetic.
 constexpr double kMaxSpeed = 100.0;
@@ -74,6 +77,13 @@ struct Scene::Impl {
   OutputStage output{};
   // Written by the control thread (Scene::SetLowVibration), read once per block by Process().
   std::atomic<bool> low_vibration{false};
+  SceneSkips skips{};
+  bool friction_skipped = false;  // the last sample left friction out (relaxed_friction)
+  bool idle = false;              // skipping the kernel (SceneSkips::idle_blocks)
+  std::uint64_t frame_count = 0;  // frames rendered since Reset (idle checks on absolute time)
+  double output_gain = 1.0;       // max(|sound gain|, |haptic gain|, 1)
+  double release_gain = 0.0;  // output_gain · Σ |g_i| / (m_i ω0_i): pickup per newton released
+  double max_abs_gain = 0.0;  // output_gain · max |g_i|
 
   // Gesture state set by the last command.
   ProbeCommand gesture{};
@@ -109,6 +119,61 @@ struct Scene::Impl {
     burst_flight = burst_touched = false;
     burst_samples = 0;
     noise_state = kNoiseSeed;
+    idle = false;
+    frame_count = 0;
+    friction_skipped = false;
+  }
+
+  // Pen up, probe parked, resonator and output filters below kIdleSilence.
+  bool Silent() const {
+    if (probe.active) return false;
+    return modes.PickupAmplitudeBound() * output_gain < kIdleSilence &&
+           output.FilterActivity() < kIdleSilence;
+  }
+
+  // Friction can be left out this sample (SceneSkips::relaxed_friction): not sliding, the bristle
+  // relaxed (its static force σ0 z could not move the output by kFrictionSkipAmplitude if
+  // released) and nothing at the contact moving: the resonator still about its static deflection
+  // under the current load, and (impact model on) the probe at rest and balanced by the normal
+  // force. Friction would then see no slip; the friction force can at most stop a residual slip
+  // (it is passive), so leaving it out changes the output by less than kFrictionSkipAmplitude.
+  bool FrictionIdle(const SampleDrive& drive) const {
+    if (drive.slide_velocity_mps != 0.0) return false;
+    // Relaxed: the deflection is negligible for the friction's own future (1e-9 of the break-away
+    // deflection, so zeroing it cannot change when the bristle sticks or slips) and for the sound.
+    const FrictionModel& fm = config.friction;
+    const double fn = drive.friction_share *
+                      (config.impact.enabled ? std::max(probe.normal_n, 0.0) : drive.push_n);
+    const double z = std::fabs(probe.bristle_m);
+    if (z > 1e-9 * fm.c_ba * fm.mu_d * fn / fm.sigma0) return false;
+    if (fm.sigma0 * z * release_gain > kFrictionSkipAmplitude) return false;
+    // Σ (v² + ω0² (q - q_static)²): squared contact-velocity amplitudes of the modes.
+    const double load = probe.friction_n - probe.normal_n;  // force on the resonator
+    double sum = 0.0;
+    for (int i = 0; i < modes.count; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double w2 = modes.omega0_sq[k];
+      const double dq = modes.q[k] - load / (modes.mass[k] * w2);
+      sum += modes.v[k] * modes.v[k] + w2 * dq * dq;
+    }
+    double probe_motion = 0.0;  // probe speed now plus what the force imbalance adds in a sample
+    if (config.impact.enabled) {
+      probe_motion = std::fabs(probe.velocity_mps) + std::fabs(drive.push_n - probe.normal_n) *
+                                                         config.period_s / config.probe_mass_kg;
+    }
+    // Σ amplitudes <= sqrt(count · Σ squares) (Cauchy–Schwarz); times the largest pickup gain.
+    const double limit = kFrictionSkipAmplitude / (max_abs_gain + 1e-300);
+    return static_cast<double>(modes.count + 1) * (sum + probe_motion * probe_motion) <=
+           limit * limit;
+  }
+
+  // One frame of the idle scene: only the pen position moves (exactly as RenderFrame moves it).
+  void IdleFrame(float* frame) {
+    x_m += gesture.velocity_mps * gesture.direction_x / fs;
+    y_m += gesture.velocity_mps * gesture.direction_y / fs;
+    if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
+    frame[0] = 0.0f;
+    frame[1] = 0.0f;
   }
 
   void Release(double velocity_mps) {
@@ -163,6 +228,7 @@ struct Scene::Impl {
       }
       probe.velocity_mps -= std::min(c.burst_impulse_n_s / config.probe_mass_kg, kMaxSpeed);
     }
+    if (probe.active) idle = false;  // a touch or a burst wakes the idle scene
   }
 
   void RenderFrame(float* frame) {
@@ -185,6 +251,9 @@ struct Scene::Impl {
         drive.noise_n = config.friction.sigma3 * 1.7320508075688772 * Uniform() *
                         std::sqrt(drive.slide_velocity_mps * fn);
       }
+      friction_skipped = skips.relaxed_friction && config.friction.enabled &&
+                         drive.friction_share > 0.0 && FrictionIdle(drive);
+      if (friction_skipped) drive.friction_share = 0.0;  // the kernel neither solves nor stores it
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
       // Last line of defence against absurd input: a non-finite probe is parked, never kept.
@@ -243,11 +312,27 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
   s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
-  s.modes.Prepare(m.resonator, s.fs, s.config.substeps);
+  s.modes.Prepare(m.resonator, s.fs, s.config.substeps, !s.skips.inaudible_modes);
   s.reader.Prepare(surface);
   s.output.Prepare(output, s.fs);
   s.low_vibration.store(output.low_vibration, std::memory_order_relaxed);
+  s.output_gain = std::max(
+      {std::fabs(s.output_params.sound_gain), std::fabs(s.output_params.haptic_gain), 1.0});
+  s.release_gain = 0.0;
+  s.max_abs_gain = 0.0;
+  for (int i = 0; i < s.modes.count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    s.release_gain +=
+        std::fabs(s.modes.gain[k]) / (s.modes.mass[k] * std::sqrt(s.modes.omega0_sq[k]));
+    s.max_abs_gain = std::max(s.max_abs_gain, std::fabs(s.modes.gain[k]));
+  }
+  s.release_gain *= s.output_gain;
+  s.max_abs_gain *= s.output_gain;
   s.Reset();
+}
+
+void Scene::SetSkips(const SceneSkips& skips) {
+  impl_->skips = skips;
 }
 
 void Scene::Reset() {
@@ -270,7 +355,20 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
       s.Apply(commands[next]);
       ++next;
     }
-    s.RenderFrame(interleaved_out + 2 * static_cast<std::ptrdiff_t>(f));
+    float* frame = interleaved_out + 2 * static_cast<std::ptrdiff_t>(f);
+    if (s.idle) {
+      s.IdleFrame(frame);
+    } else {
+      s.RenderFrame(frame);
+    }
+    // Idle check on absolute time (every kIdleCheckFrames frames since Reset), so that skipping
+    // starts on the same frame whatever the block size. Entering idle zeroes the inaudible state:
+    // the skipped frames then are exactly the zeros written.
+    if (++s.frame_count % kIdleCheckFrames == 0 && s.skips.idle_blocks && !s.idle && s.Silent()) {
+      s.modes.Reset();
+      s.output.Reset();
+      s.idle = true;
+    }
   }
 }
 
@@ -302,11 +400,11 @@ double Scene::TotalEnergy() const {
 }
 
 bool Scene::IsIdle() const {
-  const Impl& s = *impl_;
-  if (s.probe.active) return false;
-  const double gain = std::max(
-      {std::fabs(s.output_params.sound_gain), std::fabs(s.output_params.haptic_gain), 1.0});
-  return s.modes.PickupAmplitudeBound() * gain < kSilence && s.output.FilterActivity() < kSilence;
+  return impl_->idle || impl_->Silent();
+}
+
+bool Scene::skipping_idle() const {
+  return impl_->idle;
 }
 
 SceneProbeState Scene::probe_state() const {
@@ -323,6 +421,7 @@ SceneProbeState Scene::probe_state() const {
   st.x_m = s.x_m;
   st.y_m = s.y_m;
   st.substeps = s.probe.substeps_used;
+  st.friction_skipped = s.probe.active && s.friction_skipped;
   return st;
 }
 

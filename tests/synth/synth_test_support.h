@@ -2,12 +2,16 @@
 // Helpers shared by the synth tests: small materials, a height field with its summed-area table
 // built here independently of app/surface, and estimators written from first principles.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "synth/height_field_view.h"
 #include "synth/material_params.h"
+#include "synth/probe_command.h"
+#include "synth/scene.h"
 
 namespace sas::synth::test {
 
@@ -67,6 +71,34 @@ DampedSine FitDampedSine(const Seq& x, std::size_t begin, std::size_t end, doubl
   DampedSine out;
   out.frequency_hz = theta * fs / (2.0 * 3.14159265358979323846);
   out.decay_s = -1.0 / (fs * std::log(r));
+  return out;
+}
+
+// A probe command at an absolute frame of a rendering.
+struct TimedCommand {
+  long frame = 0;
+  ProbeCommand command;
+};
+
+// Renders `total` frames in blocks of `block`, each command placed on its frame within its block.
+// Returns the interleaved 2-channel output.
+inline std::vector<float> RenderTimed(Scene& scene, const std::vector<TimedCommand>& gesture,
+                                      long total, int block) {
+  std::vector<float> out(2 * static_cast<std::size_t>(total));
+  std::vector<ProbeCommand> pending;
+  std::size_t next = 0;
+  for (long start = 0; start < total; start += block) {
+    const int frames = static_cast<int>(std::min<long>(block, total - start));
+    pending.clear();
+    while (next < gesture.size() && gesture[next].frame < start + frames) {
+      ProbeCommand c = gesture[next].command;
+      c.frame_offset = static_cast<std::uint32_t>(std::max(0L, gesture[next].frame - start));
+      pending.push_back(c);
+      ++next;
+    }
+    scene.Process(pending.data(), static_cast<int>(pending.size()),
+                  out.data() + 2 * static_cast<std::size_t>(start), frames);
+  }
   return out;
 }
 
