@@ -4,6 +4,7 @@
 #include "kiosk/atomic_file.h"
 
 #include <toml++/toml.h>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -57,6 +58,38 @@ auto Flag(bool KioskConfig::*member) {
   return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     if (!node.is_boolean()) throw ConfigError(where + "expected true or false");
     config.*member = *node.value<bool>();
+  };
+}
+
+// A staff chord: "mod+mod[+mod...]+key" with at least two of ctrl, alt, shift, super (a single
+// modifier is one a visitor hits by accident). The key name itself is SDL's to judge: the window
+// refuses an unknown one at start and the kiosk then keeps the default chord (live_kiosk.cpp).
+auto Chord(std::string KioskConfig::*member) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
+    std::vector<std::string> parts;
+    std::string part;
+    for (const char c : *value + "+") {
+      if (c != '+') {
+        part += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        continue;
+      }
+      parts.push_back(part);
+      part.clear();
+    }
+    int modifiers = 0;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      if (parts[i] != "ctrl" && parts[i] != "alt" && parts[i] != "shift" && parts[i] != "super") {
+        throw ConfigError(where + "unknown modifier '" + parts[i] +
+                          "' (ctrl, alt, shift or super)");
+      }
+      ++modifiers;
+    }
+    if (modifiers < 2 || parts.back().empty()) {
+      throw ConfigError(where + "expected at least two modifiers and a key, e.g. \"ctrl+alt+s\"");
+    }
+    config.*member = *value;
   };
 }
 
@@ -139,6 +172,8 @@ const std::vector<KeySpec>& Schema() {
       {"gains", "ambient_rate_db_per_s", Real(&KioskConfig::ambient_rate_db_per_s, 0.01, 20.0)},
       {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},
       {"session", "default_texture", Text(&KioskConfig::default_texture)},
+      {"staff", "chord", Chord(&KioskConfig::staff_chord)},
+      {"staff", "chord_hold_s", Real(&KioskConfig::staff_chord_hold_s, 0.0, 10.0)},
   };
   return schema;
 }

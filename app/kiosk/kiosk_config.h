@@ -55,6 +55,10 @@ struct KioskConfig {
   // [session]
   double idle_timeout_s = 60.0;
   std::string default_texture = "wooden_board";
+  // [staff] — the chord that opens the staff panel: modifiers (ctrl, alt, shift, super) and one
+  // key name, held for chord_hold_s. At least two modifiers, so a visitor cannot type it by chance.
+  std::string staff_chord = "ctrl+alt+s";
+  double staff_chord_hold_s = 1.0;
 };
 
 // Parses `path`. Throws ConfigError ("<file>:<line>: <key>: <what>") on any problem.

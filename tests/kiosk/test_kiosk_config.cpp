@@ -79,6 +79,8 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.ambient_per_db == defaults.ambient_per_db);
   CHECK(shipped.ambient_quiet_dbfs == defaults.ambient_quiet_dbfs);
   CHECK(shipped.ambient_rate_db_per_s == defaults.ambient_rate_db_per_s);
+  CHECK(shipped.staff_chord == defaults.staff_chord);
+  CHECK(shipped.staff_chord_hold_s == defaults.staff_chord_hold_s);
 }
 
 TEST_CASE("vibration ceiling, low-vibration and ambient gain keys are validated", "[kiosk]") {
@@ -175,4 +177,29 @@ TEST_CASE("a bad configuration falls back to the last good one, else to the defa
   CHECK(result.source == Source::kLastGood);
   CHECK(result.config.sound_gain_db == 20.0);
   CHECK_THAT(result.problem, Catch::Contains("kiosk.toml:3") && Catch::Contains("last good"));
+}
+
+TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is bounded",
+          "[kiosk]") {
+  const KioskConfig good =
+      ParseKioskConfig("[staff]\nchord = \"Ctrl+Shift+F12\"\nchord_hold_s = 2.5\n", "good.toml");
+  CHECK(good.staff_chord == "Ctrl+Shift+F12");
+  CHECK(good.staff_chord_hold_s == 2.5);
+  auto error_for = [](const std::string& text) {
+    try {
+      ParseKioskConfig(text, "staff.toml");
+    } catch (const ConfigError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  // One modifier is a combination a visitor presses by accident.
+  CHECK_THAT(error_for("[staff]\nchord = \"alt+f4\"\n"),
+             Catch::Contains("staff.toml:2: staff.chord: expected at least two modifiers"));
+  CHECK_THAT(error_for("[staff]\nchord = \"ctrl+meta+s\"\n"),
+             Catch::Contains("unknown modifier 'meta'"));
+  CHECK_THAT(error_for("[staff]\nchord = \"ctrl+alt+\"\n"),
+             Catch::Contains("expected at least two modifiers and a key"));
+  CHECK_THAT(error_for("[staff]\nchord_hold_s = 60\n"),
+             Catch::Contains("staff.toml:2: staff.chord_hold_s: 60 is out of range"));
 }
