@@ -207,6 +207,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
+  kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
   std::error_code dir_error;

@@ -1,6 +1,8 @@
 // The kiosk's control loop body (see kiosk_control.h).
 #include "kiosk/kiosk_control.h"
 
+#include <malloc.h>
+
 namespace sas::kiosk {
 
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded) {
@@ -30,6 +32,13 @@ void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadRes
                         " textures loaded; left out: ";
   for (std::size_t i = 0; i < failures.size(); ++i) message += (i ? "; " : "") + failures[i];
   board.Set("textures", platform::DeviceState::kMissing, message);
+}
+
+void TuneAllocatorForLongRuns() {
+  // 256 kB: well above the control loop's small strings and vectors, well below a picture.
+  // Setting it also turns off glibc's dynamic threshold, which otherwise rises to the size of
+  // the largest block freed so far and moves every later field onto the heap.
+  mallopt(M_MMAP_THRESHOLD, 256 * 1024);
 }
 
 KioskControl::KioskControl(KioskEngine& engine, KioskDevices devices, platform::Logger& log)

@@ -39,6 +39,12 @@ std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& lo
 void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded,
                          const KioskEngine& engine);
 
+// For a process that runs for months: large blocks (pictures, height fields, voice takes) are
+// always mapped and unmapped on their own (a fixed mmap threshold, glibc's mallopt) instead of
+// being carved from the heap, where a freed 24 MB field can stay resident behind a small live
+// block. Called at the start of the kiosk and of the soak run.
+void TuneAllocatorForLongRuns();
+
 struct KioskDevices {
   platform::AudioOutput* output = nullptr;     // required
   platform::PenSource* pen = nullptr;          // null: no tablet at start (mouse/touch)

@@ -426,6 +426,19 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
     const SurfaceChoice choice = session_.surface();
     if (!choice.voice && choice.texture == bubble_texture_) ShowSurface(choice);
   }
+  if (release_idle_slots_ && acknowledged && !pending_surface_ &&
+      audio_fade_from_.load(std::memory_order_acquire) < 0) {
+    // The idle reset has faded over to the default texture: the other slots' fields (the wiped
+    // voice, flattened bubble wrap copies, the visit's textures) are let go, so an idle kiosk
+    // holds the same memory after every visit and no voice lingers in a scene.
+    release_idle_slots_ = false;
+    const int active = audio_active_.load(std::memory_order_acquire);
+    for (int slot = 0; slot < kSceneSlots; ++slot) {
+      if (slot != active && slot != requested_slot_) {
+        slots_[static_cast<std::size_t>(slot)].field.reset();
+      }
+    }
+  }
   if (!options_.counters_path.empty() && session_.counters() != saved_counters_ &&
       now_s - last_counters_save_s_ >= kCountersSaveIntervalS) {
     std::string error;
@@ -469,6 +482,7 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
           if (texture.loaded.bubbles) texture.loaded.bubbles->Reset();
         }
         bubbles_dirty_ = false;  // the default texture's scene is prepared afresh below
+        release_idle_slots_ = true;
         break;
       case Kind::kEnterAttract:
       case Kind::kLeaveAttract:

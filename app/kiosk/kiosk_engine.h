@@ -205,7 +205,8 @@ class KioskEngine final : public platform::AudioRenderer {
   platform::DeviceStatusBoard* board_ = nullptr;
   GestureMapping mapping_;
   int bubble_texture_ = -1;
-  bool bubbles_dirty_ = false;  // pops not yet in the bubble scene's surface
+  bool bubbles_dirty_ = false;       // pops not yet in the bubble scene's surface
+  bool release_idle_slots_ = false;  // after an idle reset, once the fade has ended
   surface::ProfileSlots voice_;
   std::optional<surface::GrayImage> voice_image_;
   platform::VoiceRecorder* recorder_ = nullptr;
