@@ -109,6 +109,15 @@ class StaffPanel {
     const ui::Rgba white{235, 235, 235, 255};
     const ui::Rgba amber{250, 190, 60, 255};
     const auto line = [&](std::string text, ui::Rgba color) {
+      // A long status (a rejected configuration's file:line: key: what) wraps onto up to two
+      // more rows rather than losing its end, where the reason is.
+      for (int row = 0; row < 2 && static_cast<int>(text.size()) > max_chars; ++row) {
+        if (y + line_h > panel.y + panel.h - 80) return;
+        ui::AddText(overlays_, panel.x + 16, y, scale,
+                    text.substr(0, static_cast<std::size_t>(max_chars)), color);
+        y += line_h;
+        text = "    " + text.substr(static_cast<std::size_t>(max_chars));
+      }
       if (static_cast<int>(text.size()) > max_chars)
         text.resize(static_cast<std::size_t>(max_chars));
       if (y + line_h > panel.y + panel.h - 80) return;

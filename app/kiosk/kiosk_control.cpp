@@ -15,12 +15,20 @@ std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& lo
 
 void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded,
                          const KioskEngine& engine) {
+  ReportConfig(board, loaded);
+  ReportTextures(board, engine);
+}
+
+void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded) {
   if (loaded.problem.empty()) {
     board.Set("config", platform::DeviceState::kOk, "configuration file loaded");
   } else {
     // "missing" = absent or rejected at start, a fallback is in use (platform/README.md states).
     board.Set("config", platform::DeviceState::kMissing, "rejected: " + loaded.problem);
   }
+}
+
+void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engine) {
   const auto& failures = engine.texture_failures();
   if (failures.empty()) {
     board.Set("textures", platform::DeviceState::kOk,

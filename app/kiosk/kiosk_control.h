@@ -34,8 +34,12 @@ namespace sas::kiosk {
 // ("<file>:<line>: <key>: <what>").
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded);
 
-// Puts what happened at start on the board, so the staff panel shows it next to the devices:
-// "config" (rejected file: which fallback and why) and "textures" (which failed to load).
+// Puts what happened at start on the board, so the staff panel lists it next to the devices (and
+// the journal has one line each): "config" (ok, or "missing: rejected: <file>:<line>: <key>:
+// <what> (using the last good configuration | the built-in defaults)") and "textures" (how many
+// loaded, and which were left out and why).
+void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded);
+void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engine);
 void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded,
                          const KioskEngine& engine);
 

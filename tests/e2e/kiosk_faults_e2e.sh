@@ -8,9 +8,9 @@
 #     a. clean start; a visit (one click); SIGTERM: exit 0, counters saved, last good copy kept;
 #     b. a corrupt kiosk.toml: it still comes up, on the last good configuration, and says
 #        "file:line: key: what" in the journal and on the staff panel's status lines;
-#     c. SIGKILL at four points (just after a visit was saved, at start-up, after the textures,
-#        when ready); every restart finds the counters and the configuration complete (never
-#        half a file, no temporaries left);
+#     c. SIGKILL at three points (just after a visit was saved, at start-up, when ready); every
+#        restart finds the counters and the configuration complete (never half a file, no
+#        temporaries left);
 #     d. stderr (the journal) on a full disk (/dev/full): it still comes up and stops cleanly.
 # Each wait polls the kiosk's log; nothing waits a fixed time for the app.
 # usage: kiosk_faults_e2e.sh <sketch-a-scratch> <kiosk_fault_run>
@@ -154,7 +154,7 @@ grep -qF "warn config: missing: rejected: $expected" "$work/$log" ||
 grep -q 'info switches: ok: keys 1-4' "$work/$log" || fail "the last good configuration is not in use"
 echo "ok: corrupt kiosk.toml -> kiosk up on the last good copy; journal and staff status: $expected"
 
-# c. SIGKILL: just after a visit was saved, then at start-up, after the textures, when ready.
+# c. SIGKILL: just after a visit was saved, then at start-up, then when ready.
 # A killed run may or may not have saved its visits (the first change is saved at once, later
 # ones every 10 s), but the file is always complete and never goes backwards.
 xdotool mousemove 600 300 click 1
@@ -165,15 +165,17 @@ stop_with KILL
 check_state_files
 [ "$(counter sessions)" = "$expected_visits" ] || fail "SIGKILL changed the saved counters"
 kills=0
-for point in '^warn config' '^info textures' '^kiosk ready'; do
+for point in '^warn config' '^kiosk ready'; do
   kills=$((kills + 1))
   start "run_c$kills.log"
   wait_log "$point" 300 || fail "restart after SIGKILL: '$point' never came"
   stop_with KILL
   check_state_files
   saved=$(counter sessions)
-  [ "$saved" -ge "$expected_visits" ] && [ "$saved" -le $((expected_visits + $(visits))) ] ||
-    fail "after SIGKILL $kills: $saved visits saved, expected $expected_visits..$((expected_visits + $(visits)))"
+  # At most the visits it logged, plus one whose save beat its journal line to the kill.
+  upper=$((expected_visits + $(visits) + 1))
+  [ "$saved" -ge "$expected_visits" ] && [ "$saved" -le "$upper" ] ||
+    fail "after SIGKILL $kills: $saved visits saved, expected $expected_visits..$upper"
   expected_visits=$saved
 done
 start run_c_after.log
@@ -184,7 +186,7 @@ stop_with TERM
 expected_visits=$((expected_visits + $(visits)))
 [ "$(counter sessions)" = "$expected_visits" ] ||
   fail "counters after the SIGKILLs: $(counter sessions) visits, expected $expected_visits"
-echo "ok: SIGKILL at four points and restarts: counters ($expected_visits visits) and configuration complete, no temporaries"
+echo "ok: SIGKILL at three points and restarts: counters ($expected_visits visits) and configuration complete, no temporaries"
 
 # d. the journal on a full disk.
 start run_d.log /dev/full

@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_control.h"
+#include "platform/device_status.h"
 #include "sas/version.h"
 #include "support/temp_dir.h"
 
@@ -117,4 +119,45 @@ TEST_CASE("a bad configuration falls back to the last good one, else to the defa
   CHECK(result.source == Source::kLastGood);
   CHECK(result.config.sound_gain_db == 20.0);
   CHECK_THAT(result.problem, Catch::Contains("kiosk.toml:3") && Catch::Contains("last good"));
+}
+
+TEST_CASE(
+    "a corrupt configuration at start is one journal line and a staff status naming file, "
+    "line, key and the fallback in use",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\n");
+  const auto last_good = dir.file("last-good.toml");
+  sas::platform::Logger log;
+  log.SetEchoToStderr(false);
+  sas::platform::DeviceStatusBoard board(log);
+
+  // Garbled by an editor: a syntax error on line 3. The copy from the good start is used.
+  REQUIRE(sas::kiosk::LoadKioskConfigWithFallback(path, last_good).problem.empty());
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\nhaptic_gain_db = = 3\n");
+  const auto loaded = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  sas::kiosk::ReportConfig(board, loaded);
+  const auto status = board.Get("config");
+  CHECK(status.state == sas::platform::DeviceState::kMissing);
+  CHECK_THAT(status.message, Catch::StartsWith("rejected: " + path + ":3:") &&
+                                 Catch::Contains("(using the last good configuration)"));
+  REQUIRE(log.Recent().size() == 1);
+  CHECK_THAT(log.Recent()[0].Text(),
+             Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
+  CHECK_THAT(
+      sas::kiosk::ConfigStatusLine(path, loaded),
+      Catch::StartsWith("CONFIG: " + path + " BAD, USING THE LAST GOOD ONE: " + path + ":3:"));
+
+  // No last good copy: the built-in defaults, and it says so, key included.
+  sas::platform::DeviceStatusBoard fresh(log);
+  dir.Write("kiosk.toml", "[session]\nidle_timeout_s = \"soon\"\n");
+  const auto defaults = sas::kiosk::LoadKioskConfigWithFallback(path, dir.file("none.toml"));
+  CHECK(defaults.source == sas::kiosk::ConfigLoadResult::Source::kDefaults);
+  CHECK(defaults.config.idle_timeout_s == sas::kiosk::KioskConfig{}.idle_timeout_s);
+  sas::kiosk::ReportConfig(fresh, defaults);
+  CHECK_THAT(fresh.Get("config").message,
+             Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
+                 Catch::EndsWith("(using the built-in defaults)"));
+  CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
+             Catch::Contains(" NOT USED, DEFAULTS: " + path + ":2: session.idle_timeout_s: "));
 }
