@@ -227,9 +227,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   const auto loaded = kiosk::LoadKioskConfigWithFallback(
       options.config_path, (fs::path(options.state_dir) / "kiosk.last-good.toml").string());
   const kiosk::KioskConfig& config = loaded.config;
-  // The journal's line now (the kiosk may still fail to open a window); the staff panel's
-  // "config" status line once the engine is up (ReportStartProblems).
-  if (!loaded.problem.empty()) log.Warn("config", loaded.problem);
+  // One journal line now (the kiosk may still fail to open a window), and the staff panel's
+  // "config" status: "missing: rejected: <file>:<line>: <key>: <what> (using ...)".
+  kiosk::ReportConfig(board, loaded);
   const std::string config_line = kiosk::ConfigStatusLine(options.config_path, loaded);
 
   ui::KioskWindow window;
@@ -261,7 +261,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return 1;
   }
   engine->SetStatusBoard(&board);
-  kiosk::ReportStartProblems(board, loaded, *engine);
+  kiosk::ReportTextures(board, *engine);
 
   // Microphone first (the engine keeps a pointer to its recorder), then the output.
   platform::AudioInputConfig input_config;

@@ -13,12 +13,6 @@ std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& lo
   return line + loaded.problem;
 }
 
-void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded,
-                         const KioskEngine& engine) {
-  ReportConfig(board, loaded);
-  ReportTextures(board, engine);
-}
-
 void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded) {
   if (loaded.problem.empty()) {
     board.Set("config", platform::DeviceState::kOk, "configuration file loaded");

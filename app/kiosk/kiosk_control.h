@@ -40,8 +40,6 @@ std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& lo
 // loaded, and which were left out and why).
 void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded);
 void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engine);
-void ReportStartProblems(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded,
-                         const KioskEngine& engine);
 
 // For a process that runs for months: large blocks (pictures, height fields, voice takes) are
 // always mapped and unmapped on their own (a fixed mmap threshold, glibc's mallopt) instead of

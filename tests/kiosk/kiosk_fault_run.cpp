@@ -159,11 +159,13 @@ TEST_CASE(
   const auto loaded = kiosk::LoadKioskConfigWithFallback(
       config_path, (fs::path(state) / "last-good.toml").string());
   REQUIRE(loaded.source == kiosk::ConfigLoadResult::Source::kDefaults);
-  if (!loaded.problem.empty()) log.Warn("config", loaded.problem);  // as live_kiosk.cpp does
+  platform::DeviceStatusBoard board(log);  // outlives the engine, which reports to it
+  kiosk::ReportConfig(board, loaded);      // as live_kiosk.cpp does, before the window opens
   CHECK(LinesSince(log, at_start,
-                   "warn config: " + config_path +
-                       ":2: audio.buffer_frames: 3 is out of range [16, 4096] (using the built-in "
-                       "defaults)") == 1);
+                   "warn config: missing: rejected: " + config_path +
+                       ":2: audio.buffer_frames: 3 is out of range [16, 4096] "
+                       "(using the built-in defaults)") == 1);
+  CHECK(LinesSince(log, at_start, "config") == 1);
   const std::string staff_line = kiosk::ConfigStatusLine(config_path, loaded);
   CHECK(staff_line.find("NOT USED, DEFAULTS: " + config_path + ":2: audio.buffer_frames") !=
         std::string::npos);
@@ -176,10 +178,9 @@ TEST_CASE(
   }
   engine_options.counters_path = (fs::path(state) / "counters.toml").string();
   engine_options.cues_dir = "/nonexistent";
-  platform::DeviceStatusBoard board(log);  // outlives the engine, which reports to it
   kiosk::KioskEngine engine(engine_options);
   engine.SetStatusBoard(&board);
-  kiosk::ReportStartProblems(board, loaded, engine);
+  kiosk::ReportTextures(board, engine);
   REQUIRE(engine.textures().size() == 2);
   CHECK(LinesSince(log, at_start, "error textures: broken_glass left out") == 1);
   CHECK(LinesSince(log, at_start, "error textures: wooden_board left out") == 1);
