@@ -151,6 +151,13 @@ class Day {
       }
       now_ns_ += block_ns;
       if (now_s() >= next_sample_s_) Sample();
+      if (options_.max_wall_s > 0.0 && ++blocks_since_clock_ >= 1024) {  // every 2.7 s simulated
+        blocks_since_clock_ = 0;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count() >
+            options_.max_wall_s) {
+          out_of_time_ = true;
+        }
+      }
     }
   }
 
@@ -407,6 +414,7 @@ class Day {
   double next_sample_s_ = 0.0;
   double next_print_s_ = 0.0;
   bool out_of_time_ = false;
+  int blocks_since_clock_ = 0;
   long nan_ = 0;
   long rss_start_kb_ = -1, rss_warm_kb_ = -1, rss_end_kb_ = -1, rss_max_kb_ = -1;
   long rss_after_warm_max_kb_ = -1, rss_idle_last_kb_ = -1;
