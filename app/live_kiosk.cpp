@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
@@ -108,6 +109,15 @@ class StaffPanel {
     const ui::Rgba white{235, 235, 235, 255};
     const ui::Rgba amber{250, 190, 60, 255};
     const auto line = [&](std::string text, ui::Rgba color) {
+      // A long status (a rejected configuration's file:line: key: what) wraps onto up to two
+      // more rows rather than losing its end, where the reason is.
+      for (int row = 0; row < 2 && static_cast<int>(text.size()) > max_chars; ++row) {
+        if (y + line_h > panel.y + panel.h - 80) return;
+        ui::AddText(overlays_, panel.x + 16, y, scale,
+                    text.substr(0, static_cast<std::size_t>(max_chars)), color);
+        y += line_h;
+        text = "    " + text.substr(static_cast<std::size_t>(max_chars));
+      }
       if (static_cast<int>(text.size()) > max_chars)
         text.resize(static_cast<std::size_t>(max_chars));
       if (y + line_h > panel.y + panel.h - 80) return;
@@ -189,51 +199,6 @@ class StaffPanel {
   ui::Overlays overlays_;
 };
 
-// One journal line per visible session step (staff reading the journal, the end-to-end test).
-void LogActions(platform::Logger& log, const kiosk::KioskEngine& engine,
-                const std::vector<kiosk::SessionAction>& actions) {
-  using Kind = kiosk::SessionAction::Kind;
-  for (const auto& action : actions) {
-    switch (action.kind) {
-      case Kind::kShowSurface:
-        log.Info("session",
-                 action.surface.voice
-                     ? std::string("showing the voice")
-                     : "showing " +
-                           engine.textures()[static_cast<std::size_t>(action.surface.texture)].key);
-        break;
-      case Kind::kStartRecording:
-        log.Info("session", "recording started");
-        break;
-      case Kind::kStopRecording:
-        log.Info("session", "recording stopped");
-        break;
-      case Kind::kCancelRecording:
-        log.Info("session", "recording cancelled");
-        break;
-      case Kind::kWipeVoice:
-        log.Info("session", "voice wiped");
-        break;
-      case Kind::kEnterAttract:
-        log.Info("session", "idle reset: attract screen");
-        break;
-      case Kind::kLeaveAttract:
-        log.Info("session", "visit started");
-        break;
-      case Kind::kSpeak:
-        if (action.cue == kiosk::Cue::kRecordingTooQuiet)
-          log.Info("session", "recording too quiet");
-        if (action.cue == kiosk::Cue::kRecordingTooLoud) log.Info("session", "recording too loud");
-        if (action.cue == kiosk::Cue::kRecordingUnavailable) {
-          log.Info("session", "recording unavailable (no microphone)");
-        }
-        break;
-      default:
-        break;
-    }
-  }
-}
-
 }  // namespace
 
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
@@ -251,6 +216,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
+  kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
   std::error_code dir_error;
@@ -261,14 +227,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   const auto loaded = kiosk::LoadKioskConfigWithFallback(
       options.config_path, (fs::path(options.state_dir) / "kiosk.last-good.toml").string());
   const kiosk::KioskConfig& config = loaded.config;
-  std::string config_line = "CONFIG: " + options.config_path;
-  if (!loaded.problem.empty()) {
-    log.Warn("config", loaded.problem);
-    config_line += loaded.source == kiosk::ConfigLoadResult::Source::kLastGood
-                       ? " BAD, USING THE LAST GOOD ONE: "
-                       : " NOT USED, DEFAULTS: ";
-    config_line += loaded.problem;
-  }
+  // One journal line now (the kiosk may still fail to open a window), and the staff panel's
+  // "config" status: "missing: rejected: <file>:<line>: <key>: <what> (using ...)".
+  kiosk::ReportConfig(board, loaded);
+  const std::string config_line = kiosk::ConfigStatusLine(options.config_path, loaded);
 
   ui::KioskWindow window;
   try {
@@ -280,6 +242,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   const int width = window.width_px(), height = window.height_px();
   std::signal(SIGTERM, OnSignal);
   std::signal(SIGINT, OnSignal);
+  // A file-size limit (or a full disk) must fail the write, not kill the kiosk: the counters and
+  // the log then report it and carry on.
+  std::signal(SIGXFSZ, SIG_IGN);
 
   kiosk::KioskEngineOptions engine_options;
   engine_options.config = config;
@@ -295,6 +260,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     log.Error("kiosk", std::string("cannot load the textures: ") + error.what());
     return 1;
   }
+  engine->SetStatusBoard(&board);
+  kiosk::ReportTextures(board, *engine);
 
   // Microphone first (the engine keeps a pointer to its recorder), then the output.
   platform::AudioInputConfig input_config;
@@ -333,8 +300,6 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   switches_config.mcp2221.debounce_ms = config.switches_debounce_ms;
   switches_config.mcp2221.poll_interval_ms = config.mcp2221_poll_ms;
   auto switches = platform::OpenSwitchInputs(switches_config, board);
-  platform::TokenSelector selector;
-  bool record_down = false;
 
   platform::PenConfig pen_config;
   pen_config.screen_width_px = width;
@@ -342,6 +307,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   pen_config.seat = config.pen_seat;
   pen_config.device_name_contains = config.pen_device;
   auto pen = platform::OpenPen(pen_config, board);
+  kiosk::KioskControl control(*engine, {output.get(), pen.get(), &switches}, log);
 
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   watchdog.Watch("audio", [&]() -> std::int64_t {
@@ -403,7 +369,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
         case Kind::kPointerDown:
         case Kind::kPointerMove:
         case Kind::kPointerUp:
-          if (!pen) stylus_to_engine(event.stylus);  // a tablet speaks through libinput instead
+          // A working tablet speaks through libinput instead; unplugged, the mouse/touch stands in.
+          if (control.PointerActive()) stylus_to_engine(event.stylus);
           break;
         case Kind::kTokenKey:
           if (event.token >= 0) {
@@ -422,57 +389,35 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
           break;
       }
     }
-    if (pen) {
-      platform::PenEvent pe;
-      while (pen->Pop(pe)) {
-        ui::StylusSample s;
-        s.time_ns = pe.time_ns;
-        s.x_px = pe.x_px;
-        s.y_px = pe.y_px;
-        s.tip_down = pe.tip_down && pe.in_proximity;
-        s.pressure = s.tip_down ? pe.pressure : 0.0f;
-        s.tilt_x_deg = pe.tilt_x_deg;
-        s.tilt_y_deg = pe.tilt_y_deg;
-        s.source = ui::StylusSource::kPen;
-        stylus_to_engine(s);
-      }
-    }
-    platform::SwitchEvent se;
-    while (switches.Pop(se)) {
-      if (se.input == platform::kRecordInput) {
-        record_down = se.pressed;
-        engine->OnRecordButton(se.time_ns, se.pressed);
-      } else if (selector.Apply(se)) {
-        engine->OnToken(se.time_ns, selector.Selected());
-      }
-    }
     const std::int64_t now_ns = platform::MonotonicNowNs();
     const double now_s = static_cast<double>(now_ns) * 1e-9;
-    const auto actions = engine->Tick(now_ns);
-    if (!actions.empty()) {
-      LogActions(log, *engine, actions);
-      view->Apply(actions, now_s);
-    }
-    output->Poll(now_ns);
-    engine->SetAudioRunning(output->Running());
+    const auto actions = control.Step(now_ns, [&](const platform::PenEvent& pe) {
+      ui::StylusSample s;
+      s.time_ns = pe.time_ns;
+      s.x_px = pe.x_px;
+      s.y_px = pe.y_px;
+      s.tip_down = pe.tip_down && pe.in_proximity;
+      s.pressure = s.tip_down ? pe.pressure : 0.0f;
+      s.tilt_x_deg = pe.tilt_x_deg;
+      s.tilt_y_deg = pe.tilt_y_deg;
+      s.source = ui::StylusSource::kPen;
+      stylus_to_engine(s);
+    });
+    if (!actions.empty()) view->Apply(actions, now_s);
 
     ui::Overlays staff_overlays;
     if (window.staff_panel_open()) {
-      staff_overlays =
-          staff.Build({engine.get(), output.get(), &board, &switches, &selector, record_down,
-                       last_pen, config_line, config.buffer_frames, config.sample_rate_hz},
-                      width, height, now_s);
+      staff_overlays = staff.Build({engine.get(), output.get(), &board, &switches,
+                                    &control.selector(), control.record_down(), last_pen,
+                                    config_line, config.buffer_frames, config.sample_rate_hz},
+                                   width, height, now_s);
     }
     if (view->Advance(now_s, window.staff_panel_open(), std::move(staff_overlays))) {
       window.Present(view->view().TakeFrame());
     }
     watchdog.Tick(now_ns);
   }
-  log.Info("kiosk", "stopping");
-  std::string error;
-  if (!engine->SaveCounters(&error)) log.Warn("counters", error);
-  output->Stop();
-  engine->SetAudioRunning(false);
+  control.Shutdown();
   input->Stop();
   engine->SetRecorder(nullptr);
   input->recorder().Wipe();

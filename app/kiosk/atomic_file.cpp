@@ -64,4 +64,19 @@ bool AtomicWriteFile(const std::string& path, const std::string& contents, std::
   return true;
 }
 
+void RemoveStaleTemporaries(const std::string& path) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path directory =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const std::string prefix = "." + target.filename().string() + ".";
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+    const std::string name = entry.path().filename().string();
+    // mkstemp's suffix is exactly six characters.
+    if (name.size() == prefix.size() + 6 && name.rfind(prefix, 0) == 0) {
+      std::filesystem::remove(entry.path(), error);
+    }
+  }
+}
+
 }  // namespace sas::kiosk

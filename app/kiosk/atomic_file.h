@@ -13,4 +13,8 @@ namespace sas::kiosk {
 // temporary file and puts a readable reason in `error`.
 bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error);
 
+// Removes the temporary files AtomicWriteFile leaves next to `path` when the process is killed
+// between creating and renaming one (".<name>.XXXXXX"); `path` itself is never touched.
+void RemoveStaleTemporaries(const std::string& path);
+
 }  // namespace sas::kiosk

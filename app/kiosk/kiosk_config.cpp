@@ -236,6 +236,7 @@ ConfigLoadResult LoadKioskConfigWithFallback(const std::string& path,
                                              const std::string& last_good_path) {
   ConfigLoadResult result;
   std::string text;
+  if (!last_good_path.empty()) RemoveStaleTemporaries(last_good_path);  // a kill mid-copy
   try {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw ConfigError(path + ": cannot open configuration file");

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <stdexcept>
 
+#include "kiosk/atomic_file.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/output_gains.h"
@@ -90,15 +92,37 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   const auto dirs = MaterialSearchDirs(options_.materials_dir);
   surface::TextureLoadOptions load;
   load.pixel_pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
-  auto loaded = surface::LoadTextures(options_.texture_paths, load);
-  for (std::size_t i = 0; i < loaded.size(); ++i) {
-    EngineTexture texture;
-    texture.key = fs::path(options_.texture_paths[i]).parent_path().filename().string();
-    texture.material = FindMaterial(loaded[i].file.material, dirs);
-    texture.loaded = std::move(loaded[i]);
-    if (texture.loaded.bubbles) bubble_texture_ = static_cast<int>(i);
-    texture_keys_.push_back(texture.key);
-    textures_.push_back(std::move(texture));
+  // Each texture loads on its own thread (as surface::LoadTextures does) but fails on its own: a
+  // corrupt picture, texture.toml or material file leaves that texture out and the kiosk comes up
+  // with the others (issue 8), saying which one failed and why.
+  std::vector<std::future<surface::LoadedTexture>> pending;
+  for (const auto& path : options_.texture_paths) {
+    pending.push_back(std::async(std::launch::async,
+                                 [&path, &load] { return surface::LoadTexture(path, load); }));
+  }
+  std::string first_failure;
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    const std::string key = fs::path(options_.texture_paths[i]).parent_path().filename().string();
+    counter_keys_.push_back(key);
+    token_texture_.push_back(-1);
+    try {
+      EngineTexture texture;
+      texture.key = key;
+      texture.loaded = pending[i].get();
+      texture.material = FindMaterial(texture.loaded.file.material, dirs);
+      if (texture.loaded.bubbles) bubble_texture_ = static_cast<int>(textures_.size());
+      token_texture_.back() = static_cast<int>(textures_.size());
+      texture_keys_.push_back(texture.key);
+      textures_.push_back(std::move(texture));
+    } catch (const std::exception& error) {
+      texture_failures_.push_back(key + ": " + error.what());
+      if (first_failure.empty()) first_failure = error.what();
+      platform::DefaultLogger().Error(
+          "textures", key + " left out (its token shows the default texture): " + error.what());
+    }
+  }
+  if (textures_.empty()) {
+    throw std::runtime_error("no texture could be loaded (first error: " + first_failure + ")");
   }
   try {
     voice_material_ = FindMaterial(kVoiceMaterial, dirs);
@@ -118,11 +142,20 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   session.record_max_s = options_.config.record_max_duration_s;
   session_ = Session(session);
   if (!options_.counters_path.empty()) {
-    UsageCounters counters;
+    RemoveStaleTemporaries(options_.counters_path);  // left by a kill in the middle of a save
     std::string error;
-    if (!LoadCounters(options_.counters_path, texture_keys_, &counters, &error)) {
+    // Read under every texture's name, loaded or not: a texture left out today keeps its count.
+    if (!LoadCounters(options_.counters_path, counter_keys_, &file_counters_, &error)) {
       platform::DefaultLogger().Warn("counters",
                                      error + "; counting from zero (file left for staff)");
+    }
+    UsageCounters counters = file_counters_;
+    counters.strokes_per_texture.assign(textures_.size(), 0);
+    for (std::size_t i = 0; i < counter_keys_.size(); ++i) {
+      if (token_texture_[i] >= 0) {
+        counters.strokes_per_texture[static_cast<std::size_t>(token_texture_[i])] =
+            file_counters_.strokes_per_texture[i];
+      }
     }
     session_.RestoreCounters(counters);
   }
@@ -347,8 +380,12 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_fy_ = y_m;
 }
 
-void KioskEngine::OnToken(std::int64_t now_ns, int texture) {
+void KioskEngine::OnToken(std::int64_t now_ns, int token) {
   last_now_ns_ = std::max(last_now_ns_, now_ns);
+  // A token whose texture could not be loaded counts as no token: the default texture.
+  const int texture = token >= 0 && token < static_cast<int>(token_texture_.size())
+                          ? token_texture_[static_cast<std::size_t>(token)]
+                          : -1;
   session_.OnTokenSelection(static_cast<double>(now_ns) * 1e-9, texture);
 }
 
@@ -386,10 +423,23 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
     const SurfaceChoice choice = session_.surface();
     if (!choice.voice && choice.texture == bubble_texture_) ShowSurface(choice);
   }
+  if (release_idle_slots_ && acknowledged && !pending_surface_ &&
+      audio_fade_from_.load(std::memory_order_acquire) < 0) {
+    // The idle reset has faded over to the default texture: the other slots' fields (the wiped
+    // voice, flattened bubble wrap copies, the visit's textures) are let go, so an idle kiosk
+    // holds the same memory after every visit and no voice lingers in a scene.
+    release_idle_slots_ = false;
+    const int active = audio_active_.load(std::memory_order_acquire);
+    for (int slot = 0; slot < kSceneSlots; ++slot) {
+      if (slot != active && slot != requested_slot_) {
+        slots_[static_cast<std::size_t>(slot)].field.reset();
+      }
+    }
+  }
   if (!options_.counters_path.empty() && session_.counters() != saved_counters_ &&
       now_s - last_counters_save_s_ >= kCountersSaveIntervalS) {
     std::string error;
-    if (!SaveCounters(&error)) platform::DefaultLogger().Warn("counters", "not saved: " + error);
+    SaveCounters(&error);  // a failure is reported once on the status board (storage)
     last_counters_save_s_ = now_s;
   }
   return all;
@@ -429,6 +479,7 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
           if (texture.loaded.bubbles) texture.loaded.bubbles->Reset();
         }
         bubbles_dirty_ = false;  // the default texture's scene is prepared afresh below
+        release_idle_slots_ = true;
         break;
       case Kind::kEnterAttract:
       case Kind::kLeaveAttract:
@@ -570,8 +621,32 @@ void KioskEngine::SetAmbientGainDb(double gain_db) {
 
 bool KioskEngine::SaveCounters(std::string* error) const {
   if (options_.counters_path.empty()) return true;
-  if (!kiosk::SaveCounters(options_.counters_path, session_.counters(), texture_keys_, error)) {
+  // Session counts for the loaded textures, the file's own for any left out.
+  UsageCounters all = session_.counters();
+  all.strokes_per_texture = file_counters_.strokes_per_texture;
+  all.strokes_per_texture.resize(counter_keys_.size(), 0);
+  for (std::size_t i = 0; i < counter_keys_.size(); ++i) {
+    if (token_texture_[i] >= 0) {
+      all.strokes_per_texture[i] =
+          session_.counters().strokes_per_texture[static_cast<std::size_t>(token_texture_[i])];
+    }
+  }
+  std::string why;
+  const bool saved = kiosk::SaveCounters(options_.counters_path, all, counter_keys_, &why);
+  if (error) *error = why;
+  // Staff see a failing save once (journal + panel), not every 10 s; and when it works again.
+  if (!saved) {
+    if (board_) {
+      board_->Set("storage", platform::DeviceState::kLost,
+                  "usage counters not saved (" + why + "); counting on in memory, retrying");
+    } else {
+      platform::DefaultLogger().Warn("counters", "not saved: " + why);
+    }
     return false;
+  }
+  if (board_) {
+    board_->Set("storage", platform::DeviceState::kOk,
+                "usage counters saved to " + options_.counters_path);
   }
   saved_counters_ = session_.counters();
   return true;

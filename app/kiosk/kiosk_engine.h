@@ -38,6 +38,7 @@
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
 #include "platform/common/spsc_queue.h"
+#include "platform/device_status.h"
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
 #include "surface/texture_set.h"
@@ -96,7 +97,8 @@ std::string FindCuesDir();
 class KioskEngine final : public platform::AudioRenderer {
  public:
   // Loads the textures, materials, counters and cues and prepares the default texture's scene.
-  // Throws (naming the file) when a texture or material cannot be loaded.
+  // A texture whose files cannot be loaded is left out (logged, listed by texture_failures());
+  // throws only when none loads.
   explicit KioskEngine(KioskEngineOptions options);
   ~KioskEngine() override;
   KioskEngine(const KioskEngine&) = delete;
@@ -104,7 +106,8 @@ class KioskEngine final : public platform::AudioRenderer {
 
   // ---- control thread
   void OnPen(const PenInput& pen);
-  void OnToken(std::int64_t now_ns, int texture);  // -1: no token on any switch
+  // `token`: the switch (0..3, the texture_paths order) holding the token that counts, -1: none.
+  void OnToken(std::int64_t now_ns, int token);
   void OnRecordButton(std::int64_t now_ns, bool pressed);
   void OnStaffChord(std::int64_t now_ns);
   // Timers, recording, bubble surface updates; returns the session's actions (already applied to
@@ -125,10 +128,15 @@ class KioskEngine final : public platform::AudioRenderer {
   // Ambient-adaptive sound gain (ambient_gain.h), dB on top of the configured gains.
   void SetAmbientGainDb(double gain_db);
   double ambient_gain_db() const { return ambient_gain_db_; }
+  // Where a failing counters save is reported (status "storage": one line when it starts failing,
+  // one when it works again). Without a board every failure is a log line.
+  void SetStatusBoard(platform::DeviceStatusBoard* board) { board_ = board; }
 
   // ---- views (control thread)
   const Session& session() const { return session_; }
   const std::vector<EngineTexture>& textures() const { return textures_; }
+  // "<key>: <why>" for each texture left out at start (empty when all four loaded).
+  const std::vector<std::string>& texture_failures() const { return texture_failures_; }
   int default_texture() const { return default_texture_; }
   SurfaceChoice surface() const { return session_.surface(); }
   bool has_voice() const { return voice_.occupied(kVoiceSlot); }
@@ -195,10 +203,16 @@ class KioskEngine final : public platform::AudioRenderer {
   Material voice_material_;
   int default_texture_ = 0;
   Session session_;
-  std::vector<std::string> texture_keys_;
+  std::vector<std::string> texture_keys_;  // loaded textures, textures_ order
+  std::vector<std::string> counter_keys_;  // every texture path's key, token order
+  std::vector<int> token_texture_;         // token -> index in textures_, -1 when left out
+  std::vector<std::string> texture_failures_;
+  UsageCounters file_counters_;  // as read at start (counter_keys_ order)
+  platform::DeviceStatusBoard* board_ = nullptr;
   GestureMapping mapping_;
   int bubble_texture_ = -1;
-  bool bubbles_dirty_ = false;  // pops not yet in the bubble scene's surface
+  bool bubbles_dirty_ = false;       // pops not yet in the bubble scene's surface
+  bool release_idle_slots_ = false;  // after an idle reset, once the fade has ended
   surface::ProfileSlots voice_;
   std::optional<surface::GrayImage> voice_image_;
   platform::VoiceRecorder* recorder_ = nullptr;

@@ -21,6 +21,8 @@ SwitchInputs OpenSwitchInputs(const SwitchesConfig& config, DeviceStatusBoard& b
       return inputs;
     }
     why = "GPIO chip '" + config.gpio.chip + "' unusable (" + error + ")";
+    // The journal says why the GPIO header is not used even when the adapter takes over.
+    if (want_hid) board.logger().Info("switches", why + "; trying the MCP2221A adapter");
   }
   if (want_hid) {
     auto hid = std::make_unique<Mcp2221SwitchInput>(

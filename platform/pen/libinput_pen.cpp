@@ -116,20 +116,12 @@ class LibinputPenSource final : public PenSource {
     const auto type = libinput_event_get_type(event);
     if (type == LIBINPUT_EVENT_DEVICE_REMOVED) {
       libinput_device* device = libinput_event_get_device(event);
-      if (IsOurTablet(device)) {
-        board_->AddFailure("pen");
-        board_->Set("pen", DeviceState::kLost,
-                    "pen tablet '" + tablet_name_ + "' unplugged; mouse/touch fallback",
-                    "libinput");
-      }
+      if (IsOurTablet(device)) ReportConnected(false, *board_, tablet_name_);
       return;
     }
     if (type == LIBINPUT_EVENT_DEVICE_ADDED) {
       libinput_device* device = libinput_event_get_device(event);
-      if (IsOurTablet(device)) {
-        board_->AddReconnect("pen");
-        board_->Set("pen", DeviceState::kOk, "pen tablet '" + tablet_name_ + "'", "libinput");
-      }
+      if (IsOurTablet(device)) ReportConnected(true, *board_, tablet_name_);
       return;
     }
     if (type != LIBINPUT_EVENT_TABLET_TOOL_AXIS && type != LIBINPUT_EVENT_TABLET_TOOL_TIP &&

@@ -57,10 +57,28 @@ class PenSource {
   bool Pop(PenEvent& event) { return queue_.TryPop(event); }
   // CLOCK_MONOTONIC time the event thread last ran its loop (watchdog), 0 before start.
   std::int64_t HeartbeatNs() const { return heartbeat_ns_.load(std::memory_order_relaxed); }
+  // False while the started tablet is unplugged: the kiosk then takes mouse/touch input and
+  // lifts a stroke the tablet left with its tip down.
+  bool Connected() const { return connected_.load(std::memory_order_acquire); }
 
  protected:
+  // The device thread saw the tablet go or come back: flag, status line and counters (one log
+  // line per change, the same words for every backend).
+  void ReportConnected(bool connected, DeviceStatusBoard& board, const std::string& tablet) {
+    if (connected_.exchange(connected, std::memory_order_acq_rel) == connected) return;
+    if (connected) {
+      board.AddReconnect("pen");
+      board.Set("pen", DeviceState::kOk, "pen tablet '" + tablet + "' back", Name());
+    } else {
+      board.AddFailure("pen");
+      board.Set("pen", DeviceState::kLost,
+                "pen tablet '" + tablet + "' unplugged; mouse/touch fallback", Name());
+    }
+  }
+
   PenQueue queue_;
   std::atomic<std::int64_t> heartbeat_ns_{0};
+  std::atomic<bool> connected_{true};
 };
 
 std::unique_ptr<PenSource> MakeLibinputPenSource(const PenConfig& config, DeviceStatusBoard& board);
@@ -79,6 +97,10 @@ class FakePenSource final : public PenSource {
     heartbeat_ns_.store(event.time_ns, std::memory_order_relaxed);
     return queue_.TryPush(event);
   }
+  // What libinput's DEVICE_REMOVED / DEVICE_ADDED do to the real source.
+  void Unplug(DeviceStatusBoard& board) { ReportConnected(false, board, "fake tablet"); }
+  void Replug(DeviceStatusBoard& board) { ReportConnected(true, board, "fake tablet"); }
+  std::string DeviceName() const override { return "fake tablet"; }
 
  private:
   bool present_;

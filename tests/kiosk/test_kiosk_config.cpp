@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_control.h"
 #include "kiosk/output_gains.h"
+#include "platform/device_status.h"
 #include "sas/version.h"
 #include "support/temp_dir.h"
 
@@ -202,4 +204,45 @@ TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is b
              Catch::Contains("expected at least two modifiers and a key"));
   CHECK_THAT(error_for("[staff]\nchord_hold_s = 60\n"),
              Catch::Contains("staff.toml:2: staff.chord_hold_s: 60 is out of range"));
+}
+
+TEST_CASE(
+    "a corrupt configuration at start is one journal line and a staff status naming file, "
+    "line, key and the fallback in use",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\n");
+  const auto last_good = dir.file("last-good.toml");
+  sas::platform::Logger log;
+  log.SetEchoToStderr(false);
+  sas::platform::DeviceStatusBoard board(log);
+
+  // Garbled by an editor: a syntax error on line 3. The copy from the good start is used.
+  REQUIRE(sas::kiosk::LoadKioskConfigWithFallback(path, last_good).problem.empty());
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\nhaptic_gain_db = = 3\n");
+  const auto loaded = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  sas::kiosk::ReportConfig(board, loaded);
+  const auto status = board.Get("config");
+  CHECK(status.state == sas::platform::DeviceState::kMissing);
+  CHECK_THAT(status.message, Catch::StartsWith("rejected: " + path + ":3:") &&
+                                 Catch::Contains("(using the last good configuration)"));
+  REQUIRE(log.Recent().size() == 1);
+  CHECK_THAT(log.Recent()[0].Text(),
+             Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
+  CHECK_THAT(
+      sas::kiosk::ConfigStatusLine(path, loaded),
+      Catch::StartsWith("CONFIG: " + path + " BAD, USING THE LAST GOOD ONE: " + path + ":3:"));
+
+  // No last good copy: the built-in defaults, and it says so, key included.
+  sas::platform::DeviceStatusBoard fresh(log);
+  dir.Write("kiosk.toml", "[session]\nidle_timeout_s = \"soon\"\n");
+  const auto defaults = sas::kiosk::LoadKioskConfigWithFallback(path, dir.file("none.toml"));
+  CHECK(defaults.source == sas::kiosk::ConfigLoadResult::Source::kDefaults);
+  CHECK(defaults.config.idle_timeout_s == sas::kiosk::KioskConfig{}.idle_timeout_s);
+  sas::kiosk::ReportConfig(fresh, defaults);
+  CHECK_THAT(fresh.Get("config").message,
+             Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
+                 Catch::EndsWith("(using the built-in defaults)"));
+  CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
+             Catch::Contains(" NOT USED, DEFAULTS: " + path + ":2: session.idle_timeout_s: "));
 }

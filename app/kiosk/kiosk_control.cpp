@@ -1,0 +1,145 @@
+// The kiosk's control loop body (see kiosk_control.h).
+#include "kiosk/kiosk_control.h"
+
+#include <malloc.h>
+
+namespace sas::kiosk {
+
+std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded) {
+  std::string line = "CONFIG: " + path;
+  if (loaded.problem.empty()) return line;
+  line += loaded.source == ConfigLoadResult::Source::kLastGood ? " BAD, USING THE LAST GOOD ONE: "
+                                                               : " NOT USED, DEFAULTS: ";
+  return line + loaded.problem;
+}
+
+void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded) {
+  if (loaded.problem.empty()) {
+    board.Set("config", platform::DeviceState::kOk, "configuration file loaded");
+  } else {
+    // "missing" = absent or rejected at start, a fallback is in use (platform/README.md states).
+    board.Set("config", platform::DeviceState::kMissing, "rejected: " + loaded.problem);
+  }
+}
+
+void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engine) {
+  const auto& failures = engine.texture_failures();
+  if (failures.empty()) {
+    board.Set("textures", platform::DeviceState::kOk,
+              std::to_string(engine.textures().size()) + " textures loaded");
+    return;
+  }
+  std::string message = std::to_string(engine.textures().size()) + " of " +
+                        std::to_string(engine.textures().size() + failures.size()) +
+                        " textures loaded; left out: ";
+  for (std::size_t i = 0; i < failures.size(); ++i) message += (i ? "; " : "") + failures[i];
+  board.Set("textures", platform::DeviceState::kMissing, message);
+}
+
+void TuneAllocatorForLongRuns() {
+  // 256 kB: well above the control loop's small strings and vectors, well below a picture.
+  // Setting it also turns off glibc's dynamic threshold, which otherwise rises to the size of
+  // the largest block freed so far and moves every later field onto the heap.
+  mallopt(M_MMAP_THRESHOLD, 256 * 1024);
+}
+
+KioskControl::KioskControl(KioskEngine& engine, KioskDevices devices, platform::Logger& log)
+    : engine_(&engine), devices_(devices), log_(&log) {
+  engine_->SetAudioRunning(devices_.output->Running());
+}
+
+bool KioskControl::PointerActive() const {
+  return devices_.pen == nullptr || !devices_.pen->Connected();
+}
+
+std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHandler& on_pen) {
+  if (devices_.pen != nullptr) {
+    platform::PenEvent event;
+    while (devices_.pen->Pop(event)) {
+      last_pen_ = event;
+      on_pen(event);
+    }
+    const bool connected = devices_.pen->Connected();
+    if (pen_was_connected_ && !connected && last_pen_.tip_down) {
+      // Unplugged mid-stroke: no tip-up will ever come from it. Lift the stroke where it was.
+      platform::PenEvent lift = last_pen_;
+      lift.time_ns = now_ns;
+      lift.kind = platform::PenEventKind::kTipUp;
+      lift.tip_down = false;
+      lift.in_proximity = false;
+      lift.pressure = 0.0f;
+      last_pen_ = lift;
+      on_pen(lift);
+    }
+    pen_was_connected_ = connected;
+  }
+  platform::SwitchEvent switch_event;
+  while (devices_.switches->Pop(switch_event)) {
+    if (switch_event.input == platform::kRecordInput) {
+      record_down_ = switch_event.pressed;
+      engine_->OnRecordButton(switch_event.time_ns, switch_event.pressed);
+    } else if (selector_.Apply(switch_event)) {
+      engine_->OnToken(switch_event.time_ns, selector_.Selected());
+    }
+  }
+  auto actions = engine_->Tick(now_ns);
+  if (!actions.empty()) LogSessionActions(*log_, *engine_, actions);
+  devices_.output->Poll(now_ns);
+  engine_->SetAudioRunning(devices_.output->Running());
+  return actions;
+}
+
+bool KioskControl::Shutdown() {
+  log_->Info("kiosk", "stopping");
+  std::string error;
+  const bool saved = engine_->SaveCounters(&error);
+  if (!saved) log_->Warn("counters", "not saved at stop: " + error);
+  devices_.output->Stop();
+  engine_->SetAudioRunning(false);
+  return saved;
+}
+
+void LogSessionActions(platform::Logger& log, const KioskEngine& engine,
+                       const std::vector<SessionAction>& actions) {
+  using Kind = SessionAction::Kind;
+  for (const auto& action : actions) {
+    switch (action.kind) {
+      case Kind::kShowSurface:
+        log.Info("session",
+                 action.surface.voice
+                     ? std::string("showing the voice")
+                     : "showing " +
+                           engine.textures()[static_cast<std::size_t>(action.surface.texture)].key);
+        break;
+      case Kind::kStartRecording:
+        log.Info("session", "recording started");
+        break;
+      case Kind::kStopRecording:
+        log.Info("session", "recording stopped");
+        break;
+      case Kind::kCancelRecording:
+        log.Info("session", "recording cancelled");
+        break;
+      case Kind::kWipeVoice:
+        log.Info("session", "voice wiped");
+        break;
+      case Kind::kEnterAttract:
+        log.Info("session", "idle reset: attract screen");
+        break;
+      case Kind::kLeaveAttract:
+        log.Info("session", "visit started");
+        break;
+      case Kind::kSpeak:
+        if (action.cue == Cue::kRecordingTooQuiet) log.Info("session", "recording too quiet");
+        if (action.cue == Cue::kRecordingTooLoud) log.Info("session", "recording too loud");
+        if (action.cue == Cue::kRecordingUnavailable) {
+          log.Info("session", "recording unavailable (no microphone)");
+        }
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+}  // namespace sas::kiosk

@@ -1,0 +1,89 @@
+#pragma once
+// The kiosk's control loop body, device side: one Step per pass drains the pen and the token
+// switches into the KioskEngine, ticks it, supervises the audio device and keeps the staff-visible
+// status (platform::DeviceStatusBoard) in step with what the engine and the devices report. The
+// live kiosk (app/live_kiosk.cpp) calls it between its window's events and its frame; the
+// fault-injection test (tests/kiosk/test_kiosk_faults.cpp) calls the same Step with the platform
+// fakes in place of PortAudio, libinput, libgpiod and hidapi, so what it checks is what runs.
+//
+// Per Step: pen events (handed to the caller's pen handler: the UI also draws them) -> a tablet
+// that went away with its tip down gets a synthesised tip-up (the sound stops, the stroke ends)
+// -> switch events (TokenSelector -> OnToken; record button) -> engine.Tick (session timers,
+// counters) -> audio Poll (lost device: silent, reopened with back-off) -> the engine is told
+// whether a callback runs. Session actions come back to the caller and are logged here, one
+// journal line per visible step.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_output.h"
+#include "platform/device_status.h"
+#include "platform/input/switch_factory.h"
+#include "platform/input/token_selector.h"
+#include "platform/log/log.h"
+#include "platform/pen/pen_source.h"
+
+namespace sas::kiosk {
+
+// The staff panel's and the journal's line about the configuration file that was (or was not)
+// used at start: "CONFIG: <path>" when it loaded, else which fallback is in use and the problem
+// ("<file>:<line>: <key>: <what>").
+std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded);
+
+// Puts what happened at start on the board, so the staff panel lists it next to the devices (and
+// the journal has one line each): "config" (ok, or "missing: rejected: <file>:<line>: <key>:
+// <what> (using the last good configuration | the built-in defaults)") and "textures" (how many
+// loaded, and which were left out and why).
+void ReportConfig(platform::DeviceStatusBoard& board, const ConfigLoadResult& loaded);
+void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engine);
+
+// For a process that runs for months: large blocks (pictures, height fields, voice takes) are
+// always mapped and unmapped on their own (a fixed mmap threshold, glibc's mallopt) instead of
+// being carved from the heap, where a freed 24 MB field can stay resident behind a small live
+// block. Called at the start of the kiosk and of the soak run.
+void TuneAllocatorForLongRuns();
+
+struct KioskDevices {
+  platform::AudioOutput* output = nullptr;     // required
+  platform::PenSource* pen = nullptr;          // null: no tablet at start (mouse/touch)
+  platform::SwitchInputs* switches = nullptr;  // required
+};
+
+class KioskControl {
+ public:
+  // Receives every pen event (and the synthesised lift); the live kiosk maps it to a stylus
+  // sample for the view and the engine, tests to an engine PenInput.
+  using PenHandler = std::function<void(const platform::PenEvent&)>;
+
+  KioskControl(KioskEngine& engine, KioskDevices devices, platform::Logger& log);
+
+  // True when pointer (mouse/touch) input should drive the engine: no tablet, or it is unplugged.
+  bool PointerActive() const;
+  // One pass of the loop at `now_ns` (CLOCK_MONOTONIC, or a test's clock). Returns the session's
+  // actions for the UI (already applied to the engine and logged).
+  std::vector<SessionAction> Step(std::int64_t now_ns, const PenHandler& on_pen);
+  // Clean stop (SIGTERM): counters saved, audio stopped. False when the save failed (logged).
+  bool Shutdown();
+
+  bool record_down() const { return record_down_; }
+  const platform::TokenSelector& selector() const { return selector_; }
+
+ private:
+  KioskEngine* engine_;
+  KioskDevices devices_;
+  platform::Logger* log_;
+  platform::TokenSelector selector_;
+  bool record_down_ = false;
+  bool pen_was_connected_ = true;
+  platform::PenEvent last_pen_{};
+};
+
+// One journal line per visible session step (staff reading the journal, the end-to-end tests).
+void LogSessionActions(platform::Logger& log, const KioskEngine& engine,
+                       const std::vector<SessionAction>& actions);
+
+}  // namespace sas::kiosk

@@ -1,0 +1,473 @@
+// Soak run (issue 8, reliability b): an accelerated simulated day of random visitors through the
+// real KioskEngine on its virtual clock, with the platform's audio callback core in place of the
+// sound card (every 128-frame block of the day is rendered, idle time included: the engine's own
+// idle path, nothing skipped) and the fake microphone fed synthesised speech.
+//
+// Visitors arrive after an idle gap longer than the idle timeout (so each gap ends in the engine's
+// idle reset: default texture, bubbles un-popped, voice wiped, attract screen). Each visit is a
+// random sequence of strokes in every style (scrape: pen upright, rub: tilted, roll), token
+// switches (also mid-stroke), firm presses that pop bubbles, and voice recordings (speech-like
+// signals of random pitch and length; some silent takes the kiosk must refuse), with pauses.
+//
+// Checked: zero NaN/Inf samples in the output, resident memory (/proc/self/statm) growth below
+// 1 MB from the end of the warm-up to the end, the usage counters equal to what the visitors did
+// and identical after a save and reload, the idle reset after every visit. Prints RSS over time.
+//
+//   kiosk_soak [--simulated-hours H (8)] [--max-wall-seconds S (0 = none)] [--seed N]
+//              [--warmup-hours W (min(1, H/4))] [--rss-limit-kb K (1024; 0 = not checked)]
+// Exit 0 when every check held (a run cut short by --max-wall-seconds says so and checks what it
+// ran), 1 otherwise.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "kiosk/counters_file.h"
+#include "kiosk/kiosk_control.h"
+#include "kiosk/kiosk_engine.h"
+#include "kiosk/synthetic_voice.h"
+#include "platform/audio/audio_input.h"
+#include "platform/audio/audio_output.h"
+#include "platform/log/log.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sas::kiosk::KioskEngine;
+using sas::kiosk::PenInput;
+
+constexpr int kWidthPx = 1920;
+constexpr int kHeightPx = 1080;
+constexpr double kPenRateHz = 200.0;
+
+long ResidentKb() {
+  std::FILE* file = std::fopen("/proc/self/statm", "r");
+  if (file == nullptr) return -1;
+  long size = 0, resident = 0;
+  const int n = std::fscanf(file, "%ld %ld", &size, &resident);
+  std::fclose(file);
+  return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : -1;
+}
+
+struct Options {
+  double simulated_hours = 8.0;
+  double max_wall_s = 0.0;
+  double warmup_hours = -1.0;
+  long rss_limit_kb = 1024;  // 0: not checked (sanitizer builds: ASan's quarantine keeps memory)
+  unsigned seed = 20261123;
+};
+
+class Day {
+ public:
+  explicit Day(const Options& options, const std::string& state_dir)
+      : options_(options),
+        rng_(options.seed),
+        mic_(RecorderConfig()),
+        engine_(EngineOptions(state_dir)),
+        core_(engine_),
+        block_(static_cast<std::size_t>(kBlockFrames) * 2) {
+    engine_.SetRecorder(&mic_.recorder());
+    mic_.Start();
+    engine_.SetAudioRunning(true);
+    expected_strokes_.assign(engine_.textures().size(), 0);
+    wall_start_ = std::chrono::steady_clock::now();
+    warmup_s_ = options_.warmup_hours >= 0.0
+                    ? options_.warmup_hours * 3600.0
+                    : std::min(1.0, options_.simulated_hours / 4.0) * 3600.0;
+  }
+
+  bool Run() {
+    const double end_s = options_.simulated_hours * 3600.0;
+    std::printf("sim_h  wall_s  rss_kb  visitors  strokes  recordings  pops  nan\n");
+    Sample();
+    while (now_s() < end_s && !out_of_time_) {
+      // Nobody there: longer than the idle timeout, so the engine's idle reset runs.
+      const double idle_timeout_s = engine_.config().idle_timeout_s;
+      Idle(Uniform(idle_timeout_s + 5.0, idle_timeout_s + 150.0));
+      if (out_of_time_ || now_s() >= end_s) break;
+      CheckIdleReset();
+      Visit();
+    }
+    return Report();
+  }
+
+ private:
+  static constexpr int kBlockFrames = 128;
+  static constexpr double kFs = 48000.0;
+
+  static sas::platform::VoiceRecorderConfig RecorderConfig() {
+    sas::platform::VoiceRecorderConfig recorder;
+    const sas::kiosk::KioskConfig config;
+    recorder.sample_rate_hz = config.sample_rate_hz;
+    recorder.max_duration_s = config.record_max_duration_s;
+    recorder.clip_level = static_cast<float>(config.record_clip_level);
+    recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
+    return recorder;
+  }
+  static sas::kiosk::KioskEngineOptions EngineOptions(const std::string& state_dir) {
+    sas::kiosk::KioskEngineOptions engine;
+    engine.virtual_clock = true;
+    engine.screen_width_px = kWidthPx;
+    engine.screen_height_px = kHeightPx;
+    engine.counters_path = (fs::path(state_dir) / "counters.toml").string();
+    return engine;  // the shipped defaults otherwise: 60 s idle timeout, cues if built
+  }
+
+  double now_s() const { return static_cast<double>(now_ns_) * 1e-9; }
+  double Uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+  int Pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
+
+  // Runs `seconds` of the day block by block (as the headless visit does): pen samples due before
+  // each block go to the engine, the engine ticks, the microphone gets a block while armed, the
+  // callback core renders one device block.
+  void Advance(double seconds, const std::function<std::optional<PenInput>(double)>& pen = {}) {
+    const auto block_ns = static_cast<std::int64_t>(std::llround(kBlockFrames * 1e9 / kFs));
+    const std::int64_t end_ns = now_ns_ + static_cast<std::int64_t>(seconds * 1e9);
+    while (now_ns_ < end_ns) {
+      if (pen) {
+        while (next_pen_ns_ < now_ns_) {
+          if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
+            sample->time_ns = next_pen_ns_;
+            engine_.OnPen(*sample);
+          }
+          next_pen_ns_ += static_cast<std::int64_t>(1e9 / kPenRateHz);
+        }
+      } else {
+        next_pen_ns_ = now_ns_;
+      }
+      engine_.Tick(now_ns_);
+      FeedMicrophone();
+      core_.Run(block_.data(), kBlockFrames, 2, false);
+      for (const float s : block_) {
+        if (!std::isfinite(s)) ++nan_;
+      }
+      now_ns_ += block_ns;
+      if (now_s() >= next_sample_s_) Sample();
+      if (options_.max_wall_s > 0.0 && ++blocks_since_clock_ >= 1024) {  // every 2.7 s simulated
+        blocks_since_clock_ = 0;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count() >
+            options_.max_wall_s) {
+          out_of_time_ = true;
+        }
+      }
+    }
+  }
+
+  void Idle(double seconds) {
+    // In pieces, so the wall-clock limit is honoured during long gaps too.
+    while (seconds > 0.0 && !out_of_time_) {
+      const double piece = std::min(seconds, 10.0);
+      Advance(piece);
+      seconds -= piece;
+    }
+  }
+
+  void Sample() {
+    const long rss = ResidentKb();
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+    if (rss_start_kb_ < 0) rss_start_kb_ = rss;
+    rss_max_kb_ = std::max(rss_max_kb_, rss);
+    rss_end_kb_ = rss;
+    if (now_s() >= next_print_s_) {
+      std::printf("%5.2f  %6.0f  %6ld  %8d  %7d  %10d  %4d  %3ld\n", now_s() / 3600.0, wall_s, rss,
+                  visitors_, strokes_, good_recordings_ + failed_recordings_, pops_, nan_);
+      std::fflush(stdout);
+      next_print_s_ += options_.simulated_hours > 1.0 ? 1800.0 : 300.0;
+    }
+    next_sample_s_ += 60.0;
+    if (options_.max_wall_s > 0.0 && wall_s > options_.max_wall_s) out_of_time_ = true;
+  }
+
+  void FeedMicrophone() {
+    if (!mic_.recorder().Recording()) return;
+    std::vector<float>& block = mic_block_;
+    block.assign(kBlockFrames, 0.0f);  // room tone: silence once the speaker stops
+    const std::size_t n = std::min<std::size_t>(kBlockFrames, voice_.size() - voice_pos_);
+    std::copy_n(voice_.begin() + static_cast<std::ptrdiff_t>(voice_pos_), n, block.begin());
+    voice_pos_ += n;
+    mic_.Feed(block.data(), block.size());
+  }
+
+  // Memory is compared at the same point of every cycle: the kiosk idle on its attract screen,
+  // just before the next visitor (between visits the heap's high-water mark from a recording or
+  // a scene switch comes and goes with glibc's trimming; a leak shows up here as a rising floor).
+  void SampleIdle() {
+    const long rss = ResidentKb();
+    if (now_s() < warmup_s_ || rss_warm_kb_ < 0) {
+      rss_warm_kb_ = rss;
+      if (now_s() < warmup_s_) return;
+    }
+    rss_idle_last_kb_ = rss;
+    rss_after_warm_max_kb_ = std::max(rss_after_warm_max_kb_, rss);
+    ++idle_samples_after_warmup_;
+  }
+
+  void CheckIdleReset() {
+    SampleIdle();
+    if (engine_.session().mode() != sas::kiosk::SessionMode::kAttract || engine_.has_voice() ||
+        engine_.popped_bubbles() != 0 || engine_.surface().texture != engine_.default_texture() ||
+        engine_.surface().voice) {
+      ++idle_reset_failures_;
+    }
+    ++idle_resets_;
+  }
+
+  // One stroke from (x0, y0) to (x1, y1) (screen fractions); `midway` runs half-way through.
+  void Stroke(double x0, double y0, double x1, double y1, double duration_s, double pressure,
+              double tilt_deg, std::optional<sas::synth::ProbeStyle> style,
+              const std::function<void()>& midway = {}) {
+    const auto surface = engine_.surface();  // what the session counts the stroke on
+    if (surface.voice) {
+      ++expected_voice_strokes_;
+    } else {
+      ++expected_strokes_[static_cast<std::size_t>(surface.texture)];
+    }
+    ++strokes_;
+    const double t0 = now_s();
+    const auto pen = [&](double t) -> std::optional<PenInput> {
+      const double u = std::clamp((t - t0) / duration_s, 0.0, 1.0);
+      PenInput sample;
+      sample.x_px = (x0 + (x1 - x0) * u) * kWidthPx;
+      sample.y_px = (y0 + (y1 - y0) * u) * kHeightPx;
+      sample.tip_down = t - t0 < duration_s;
+      sample.pressure = sample.tip_down ? pressure : 0.0;
+      sample.tilt_deg = tilt_deg;
+      sample.has_tilt = true;
+      sample.style = style;
+      return sample;
+    };
+    Advance(duration_s * 0.5, pen);
+    if (midway) midway();
+    Advance(duration_s * 0.5 + 0.05, pen);  // and the lift
+  }
+
+  void RandomStroke() {
+    const double x0 = Uniform(0.05, 0.95), y0 = Uniform(0.05, 0.95);
+    const double x1 = std::clamp(x0 + Uniform(-0.4, 0.4), 0.0, 1.0);
+    const double y1 = std::clamp(y0 + Uniform(-0.3, 0.3), 0.0, 1.0);
+    const int style = Pick(3);
+    const double tilt = style == 1 ? Uniform(45.0, 60.0) : Uniform(0.0, 15.0);
+    const auto forced = style == 2 ? std::optional(sas::synth::ProbeStyle::kRoll)
+                                   : std::optional<sas::synth::ProbeStyle>();
+    std::function<void()> midway;
+    if (Pick(8) == 0) midway = [this] { Token(Pick(5) - 1); };  // a token switch mid-stroke
+    Stroke(x0, y0, x1, y1, Uniform(0.3, 2.5), Uniform(0.25, 0.9), tilt, forced, midway);
+  }
+
+  void Token(int token) { engine_.OnToken(now_ns_, token); }
+
+  void PopBubble() {
+    int bubble_token = -1;
+    for (std::size_t t = 0; t < engine_.textures().size(); ++t) {
+      if (engine_.textures()[t].loaded.bubbles) bubble_token = static_cast<int>(t);
+    }
+    if (bubble_token < 0) return;
+    Token(bubble_token);
+    Advance(0.6);
+    const auto* state = engine_.bubbles();
+    if (state == nullptr || state->centres().empty()) return;
+    const auto& centre =
+        state->centres()[static_cast<std::size_t>(Pick(static_cast<int>(state->centres().size())))];
+    double sx = 0.0, sy = 0.0;
+    engine_.FieldToScreen(centre.first, centre.second, &sx, &sy);
+    if (sx < 0 || sy < 0 || sx >= kWidthPx || sy >= kHeightPx) return;
+    const int before = engine_.popped_bubbles();
+    Stroke(sx / kWidthPx, sy / kHeightPx, sx / kWidthPx + 0.002, sy / kHeightPx, 0.3, 1.0, 0.0, {});
+    pops_ += engine_.popped_bubbles() - before;
+  }
+
+  void Record() {
+    const bool silent = Pick(6) == 0;  // a visitor who says nothing: the kiosk must refuse it
+    const double length_s = Uniform(0.8, 4.5);
+    voice_ = silent ? std::vector<float>(static_cast<std::size_t>(length_s * kFs), 0.0f)
+                    : sas::kiosk::SynthesiseVoice(kFs, length_s, Uniform(85.0, 260.0));
+    voice_pos_ = 0;
+    engine_.OnRecordButton(now_ns_, true);
+    Advance(0.1);
+    engine_.OnRecordButton(now_ns_, false);
+    Advance(3.2);  // the 3 s countdown
+    while (voice_pos_ < voice_.size() &&
+           engine_.session().mode() == sas::kiosk::SessionMode::kRecording) {
+      Advance(0.1);
+    }
+    if (engine_.session().mode() == sas::kiosk::SessionMode::kRecording) {
+      engine_.OnRecordButton(now_ns_, true);  // the visitor ends the take
+      Advance(0.05);
+      engine_.OnRecordButton(now_ns_, false);
+    }
+    Advance(0.6);
+    if (silent) {
+      ++failed_recordings_;
+    } else {
+      ++good_recordings_;
+      if (!engine_.has_voice()) ++voice_failures_;
+    }
+  }
+
+  void Visit() {
+    ++visitors_;
+    // The first touch leaves the attract screen (it is a stroke too).
+    Stroke(0.5, 0.5, 0.52, 0.5, 0.2, 0.5, 0.0, {});
+    const int actions = 3 + Pick(10);
+    for (int a = 0; a < actions && !out_of_time_; ++a) {
+      const int what = Pick(20);
+      if (what < 11) {
+        RandomStroke();
+      } else if (what < 15) {
+        Token(Pick(5) - 1);  // place a token, or lift them all (-1)
+        Advance(Uniform(0.2, 1.0));
+      } else if (what < 17) {
+        Record();
+        if (engine_.has_voice()) RandomStroke();  // scratching the voice
+      } else {
+        PopBubble();
+      }
+      Advance(Uniform(0.3, 6.0));  // a pause, well inside the idle timeout
+    }
+  }
+
+  bool Report() {
+    bool ok = true;
+    const auto check = [&](bool condition, const std::string& what) {
+      std::printf("%s: %s\n", condition ? "ok" : "FAIL", what.c_str());
+      ok = ok && condition;
+    };
+    Sample();
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+    const double simulated_h = now_s() / 3600.0;
+    std::printf(
+        "soak: simulated %.2f h (asked %.2f h%s) in %.0f s wall (%.1fx real time), %d visitors, %d "
+        "strokes, %d recordings (%d silent), %d bubbles popped, %d idle resets\n",
+        simulated_h, options_.simulated_hours,
+        out_of_time_ ? ", stopped at --max-wall-seconds" : "", wall_s,
+        now_s() / std::max(wall_s, 1e-9), visitors_, strokes_,
+        good_recordings_ + failed_recordings_, failed_recordings_, pops_, idle_resets_);
+    const long growth_kb = rss_after_warm_max_kb_ - rss_warm_kb_;
+    std::printf(
+        "soak: RSS start %ld kB, end %ld kB, max %ld kB (every minute); idle on the attract "
+        "screen: after warm-up (%.2f h) %ld kB, highest since %ld kB, last %ld kB (%d samples)\n",
+        rss_start_kb_, rss_end_kb_, rss_max_kb_, warmup_s_ / 3600.0, rss_warm_kb_,
+        rss_after_warm_max_kb_, rss_idle_last_kb_, idle_samples_after_warmup_);
+    check(nan_ == 0, "NaN/Inf samples in the output: " + std::to_string(nan_));
+    if (options_.rss_limit_kb > 0) {
+      check(rss_warm_kb_ > 0 && idle_samples_after_warmup_ > 0 && growth_kb < options_.rss_limit_kb,
+            "idle RSS growth after warm-up " + std::to_string(growth_kb) + " kB (limit " +
+                std::to_string(options_.rss_limit_kb) + " kB)");
+    } else {
+      std::printf("not checked: RSS growth (--rss-limit-kb 0)\n");
+    }
+    check(visitors_ > 0 && strokes_ > 0, "visitors came and stroked");
+    check(idle_reset_failures_ == 0,
+          "idle reset (attract, default texture, voice wiped, bubbles un-popped) before each of " +
+              std::to_string(idle_resets_) + " visits");
+    check(voice_failures_ == 0,
+          "every spoken take became the surface (" + std::to_string(voice_failures_) + " did not)");
+    const auto& counters = engine_.session().counters();
+    check(counters.sessions == static_cast<std::uint64_t>(visitors_),
+          "visits counted " + std::to_string(counters.sessions) + " = visitors " +
+              std::to_string(visitors_));
+    check(counters.strokes_per_texture == expected_strokes_ &&
+              counters.voice_strokes == expected_voice_strokes_,
+          "strokes counted per texture and on the voice = strokes made");
+    check(counters.recordings == static_cast<std::uint64_t>(good_recordings_) &&
+              counters.failed_recordings == static_cast<std::uint64_t>(failed_recordings_),
+          "recordings counted " + std::to_string(counters.recordings) + " good, " +
+              std::to_string(counters.failed_recordings) + " refused");
+    std::string error;
+    const bool saved = engine_.SaveCounters(&error);
+    sas::kiosk::UsageCounters reloaded;
+    std::vector<std::string> keys;
+    for (const auto& texture : engine_.textures()) keys.push_back(texture.key);
+    const bool loaded = sas::kiosk::LoadCounters((fs::path(state_dir_) / "counters.toml").string(),
+                                                 keys, &reloaded, &error);
+    check(saved && loaded && reloaded == counters, "counters file after save reads back equal");
+    return ok;
+  }
+
+ public:
+  std::string state_dir_;
+
+ private:
+  Options options_;
+  std::mt19937 rng_;
+  sas::platform::FakeAudioInput mic_;  // before the engine: it holds a pointer to the recorder
+  KioskEngine engine_;
+  sas::platform::AudioCallbackCore core_;
+  std::vector<float> block_;
+  std::vector<float> mic_block_;
+  std::vector<float> voice_;
+  std::size_t voice_pos_ = 0;
+  std::int64_t now_ns_ = 0;
+  std::int64_t next_pen_ns_ = 0;
+  std::chrono::steady_clock::time_point wall_start_;
+  double warmup_s_ = 3600.0;
+  double next_sample_s_ = 0.0;
+  double next_print_s_ = 0.0;
+  bool out_of_time_ = false;
+  int blocks_since_clock_ = 0;
+  long nan_ = 0;
+  long rss_start_kb_ = -1, rss_warm_kb_ = -1, rss_end_kb_ = -1, rss_max_kb_ = -1;
+  long rss_after_warm_max_kb_ = -1, rss_idle_last_kb_ = -1;
+  int idle_samples_after_warmup_ = 0;
+  int visitors_ = 0, strokes_ = 0, pops_ = 0, idle_resets_ = 0, idle_reset_failures_ = 0;
+  int good_recordings_ = 0, failed_recordings_ = 0, voice_failures_ = 0;
+  std::vector<std::uint64_t> expected_strokes_;
+  std::uint64_t expected_voice_strokes_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--simulated-hours" && has_value) {
+      options.simulated_hours = std::atof(argv[++i]);
+    } else if (arg == "--max-wall-seconds" && has_value) {
+      options.max_wall_s = std::atof(argv[++i]);
+    } else if (arg == "--warmup-hours" && has_value) {
+      options.warmup_hours = std::atof(argv[++i]);
+    } else if (arg == "--rss-limit-kb" && has_value) {
+      options.rss_limit_kb = std::atol(argv[++i]);
+    } else if (arg == "--seed" && has_value) {
+      options.seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
+    } else {
+      std::fprintf(stderr,
+                   "usage: kiosk_soak [--simulated-hours H] [--max-wall-seconds S] "
+                   "[--warmup-hours W] [--rss-limit-kb K] [--seed N]\n");
+      return 2;
+    }
+  }
+  if (!(options.simulated_hours > 0.0)) {
+    std::fprintf(stderr, "kiosk_soak: --simulated-hours must be > 0\n");
+    return 2;
+  }
+  char state_template[] = "/tmp/sas-soak-XXXXXX";
+  if (mkdtemp(state_template) == nullptr) {
+    std::perror("kiosk_soak: mkdtemp");
+    return 1;
+  }
+  sas::kiosk::TuneAllocatorForLongRuns();  // as the live kiosk does at start
+  bool ok = false;
+  try {
+    Day day(options, state_template);
+    day.state_dir_ = state_template;
+    ok = day.Run();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "kiosk_soak: %s\n", error.what());
+  }
+  std::error_code ignored;
+  fs::remove_all(state_template, ignored);
+  return ok ? 0 : 1;
+}
