@@ -9,6 +9,7 @@
 // thread, so a pen event waits at most that long; longer with mouse/touch, which wake it).
 #include "live_kiosk.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "kiosk/ambient_gain.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
@@ -72,13 +74,17 @@ std::string Fixed(double value, int decimals) {
 struct StaffButtons {
   ui::PixelRect tone;
   ui::PixelRect sweep;
+  ui::PixelRect low_vibration;  // toggles the staff's low-vibration mode
 };
 
 StaffButtons StaffButtonRects(int width, int height) {
   const ui::PixelRect panel = ui::StaffPanelRect(width, height);
-  const int h = 44, w = 260;
-  const int y = panel.y + panel.h - h - 16;
-  return {{panel.x + 16, y, w, h}, {panel.x + 32 + w, y, w, h}};
+  const int h = 44, gap = 16;
+  const int w = std::min(260, (panel.w - 4 * gap) / 3);
+  const int y = panel.y + panel.h - h - gap;
+  return {{panel.x + gap, y, w, h},
+          {panel.x + 2 * gap + w, y, w, h},
+          {panel.x + 3 * gap + 2 * w, y, w, h}};
 }
 
 class StaffPanel {
@@ -185,8 +191,10 @@ class StaffPanel {
          white);
     line(in.config_line, white);
     const StaffButtons buttons = StaffButtonRects(width, height);
+    const char* low_vibration_label = in.engine->low_vibration() ? "LOW VIB: ON" : "LOW VIB: OFF";
     for (const auto& [rect, label] :
-         {std::pair{buttons.tone, "TEST TONE"}, std::pair{buttons.sweep, "SWEEP"}}) {
+         {std::pair{buttons.tone, "TEST TONE"}, std::pair{buttons.sweep, "SWEEP"},
+          std::pair{buttons.low_vibration, low_vibration_label}}) {
       overlays_.push_back({rect, {60, 90, 140, 255}});
       ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, 2)) / 2,
                   rect.y + (rect.h - ui::kGlyphHeight * 2) / 2, 2, label, white);
@@ -232,9 +240,19 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::ReportConfig(board, loaded);
   const std::string config_line = kiosk::ConfigStatusLine(options.config_path, loaded);
 
-  ui::KioskWindow window;
+  ui::KioskWindowOptions window_options;
+  window_options.staff_chord = {config.staff_chord, config.staff_chord_hold_s};
+  ui::KioskWindow window(window_options);
   try {
-    window.Open();
+    try {
+      window.Open();
+    } catch (const ui::WindowError& error) {
+      // A key name SDL does not know: staff must still get in, so keep the default chord.
+      if (std::string(error.what()).rfind("staff chord", 0) != 0) throw;
+      log.Error("config", std::string(error.what()) + " (using the default chord ctrl+alt+s)");
+      window = ui::KioskWindow(ui::KioskWindowOptions{});
+      window.Open();
+    }
   } catch (const std::exception& error) {
     log.Error("display", std::string("cannot open the kiosk window: ") + error.what());
     return 1;
@@ -343,16 +361,22 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     // While the staff panel is open the pen works its buttons; elsewhere it still explores.
     if (window.staff_panel_open() && s.tip_down) {
       const int x = static_cast<int>(s.x_px), y = static_cast<int>(s.y_px);
-      if (buttons.tone.Contains(x, y) || buttons.sweep.Contains(x, y)) {
+      if (buttons.tone.Contains(x, y) || buttons.sweep.Contains(x, y) ||
+          buttons.low_vibration.Contains(x, y)) {
         static std::int64_t last_press_ns = 0;
         if (s.time_ns - last_press_ns > 500 * platform::kNsPerMs) {
           last_press_ns = s.time_ns;
           if (buttons.tone.Contains(x, y)) {
             engine->PlayTestTone();
             log.Info("staff", "test tone on the speaker");
-          } else {
+          } else if (buttons.sweep.Contains(x, y)) {
             engine->PlayTransducerSweep();
             log.Info("staff", "sweep on the transducer");
+          } else {
+            engine->SetLowVibration(!engine->low_vibration());
+            log.Info("staff",
+                     engine->low_vibration() ? "low-vibration mode on" : "low-vibration mode off");
+            view->view().Invalidate();
           }
         }
         return;
@@ -360,6 +384,11 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
     engine->OnPen(input_sample);
   };
+
+  // Ambient-adaptive sound gain (gains.ambient_adaptive): the microphone's meter while the attract
+  // screen is up, a few times a second.
+  kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
+  double ambient_last_s = -1.0;
 
   while (!g_stop.load()) {
     const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen ? 2 : 8);
@@ -404,6 +433,14 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       stylus_to_engine(s);
     });
     if (!actions.empty()) view->Apply(actions, now_s);
+    if (config.ambient_adaptive && engine->recorder_present() && now_s - ambient_last_s >= 0.25) {
+      const double dt_s = ambient_last_s < 0.0 ? 0.25 : now_s - ambient_last_s;
+      ambient_last_s = now_s;
+      const double level = std::max(static_cast<double>(engine->mic_level()), 1e-6);
+      ambient.Update(20.0 * std::log10(level), dt_s,
+                     engine->session().mode() == kiosk::SessionMode::kAttract);
+      engine->SetAmbientGainDb(ambient.gain_db());
+    }
 
     ui::Overlays staff_overlays;
     if (window.staff_panel_open()) {

@@ -578,6 +578,7 @@ void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
   // the staff's low-vibration mode: one builder for every path (output_gains.h).
   const synth::OutputParams output =
       KioskOutputParams(options_.config, gains, ambient_gain_db_, low_vibration_);
+  ambient_gain_applied_db_ = ambient_gain_db_;
   target.field = field;
   target.scene.Prepare(material.params, output, target.field->View());
   current_field_ = std::move(field);
@@ -614,9 +615,15 @@ void KioskEngine::SetLowVibration(bool on) {
 }
 
 void KioskEngine::SetAmbientGainDb(double gain_db) {
-  // Takes effect with the next prepared scene (a texture switch or the idle reset): the ambient
-  // gain only moves while nobody is at the box, so no stroke hears it change.
+  // The ambient gain only moves while nobody is at the box (attract screen), so no stroke hears
+  // it change. It reaches the sound through a freshly prepared scene of the same surface (a
+  // silent cross-fade), re-prepared only when it has moved by half a dB or more since the last
+  // time, and otherwise with the next texture switch.
   ambient_gain_db_ = std::isfinite(gain_db) ? gain_db : 0.0;
+  if (session_.mode() == SessionMode::kAttract &&
+      std::fabs(ambient_gain_db_ - ambient_gain_applied_db_) >= 0.5) {
+    ShowSurface(session_.surface());
+  }
 }
 
 bool KioskEngine::SaveCounters(std::string* error) const {

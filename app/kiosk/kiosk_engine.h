@@ -220,6 +220,7 @@ class KioskEngine final : public platform::AudioRenderer {
   std::string cues_dir_;
   bool low_vibration_ = false;
   double ambient_gain_db_ = 0.0;
+  double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
   std::vector<Clip> clips_;
   std::vector<int> name_cues_, description_cues_;  // per texture, -1 when absent
   std::array<int, 7> message_cues_{};              // per Cue (name/description unused)

@@ -177,12 +177,17 @@ namespace {
 
 // One 0.32 s stroke across wooden board (the default texture) rendered through the engine;
 // returns the stereo output during it.
-std::vector<float> StrokeOnDefaultTexture(bool low_vibration) {
-  KioskEngine engine(Options());
+std::vector<float> StrokeOnDefaultTexture(bool low_vibration, double ambient_gain_db = 0.0) {
+  KioskEngineOptions options = Options();
+  // Quiet enough that the soft limiters stay linear: the gains are then exactly what is heard.
+  options.config.sound_gain_db = -20.0;
+  options.config.haptic_gain_db = -20.0;
+  KioskEngine engine(options);
   engine.SetAudioRunning(true);
   engine.SetLowVibration(low_vibration);
-  RenderBlocks(engine, 40);  // past the 20 ms ramp
-  std::int64_t t = 40 * kBlockNs;
+  engine.SetAmbientGainDb(ambient_gain_db);  // the kiosk starts on its attract screen
+  RenderBlocks(engine, 200);                 // past the 20 ms ramp and any 0.45 s cross-fade
+  std::int64_t t = 200 * kBlockNs;
   std::vector<float> audio;
   for (int i = 0; i < 120; ++i) {
     engine.OnPen(Pen(t, 600 + 3.0 * i, 500, true));
@@ -213,4 +218,16 @@ TEST_CASE(
   const double drop_db = 20.0 * std::log10(ChannelRms(gentle, 1) / ChannelRms(normal, 1));
   CHECK(drop_db == Approx(-Options().config.low_vibration_db).margin(0.5));
   CHECK(ChannelRms(gentle, 0) == Approx(ChannelRms(normal, 0)).epsilon(1e-6));
+}
+
+TEST_CASE(
+    "engine: an ambient gain set on the attract screen raises the next visitor's sound by "
+    "that much and leaves the transducer alone",
+    "[kiosk]") {
+  const auto quiet_room = StrokeOnDefaultTexture(false, 0.0);
+  const auto busy_room = StrokeOnDefaultTexture(false, 6.0);
+  REQUIRE(ChannelRms(quiet_room, 0) > 1e-4);
+  const double rise_db = 20.0 * std::log10(ChannelRms(busy_room, 0) / ChannelRms(quiet_room, 0));
+  CHECK(rise_db == Approx(6.0).margin(0.5));
+  CHECK(ChannelRms(busy_room, 1) == Approx(ChannelRms(quiet_room, 1)).epsilon(1e-6));
 }
