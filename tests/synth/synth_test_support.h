@@ -109,6 +109,24 @@ inline double Cents(double measured, double target) {
 // The rubbing demo of the Sound Design Toolkit (../shared/reference/friction.md): σ0 = 1000,
 // σ1 = 39, σ2 = 13, c_ba = 0.3, μ_d = 0.03, μ_s = 0.75, v_s = 0.05, exciter 0.1 kg, six modes
 // 100–600 Hz with decays 0.01–0.06 s.
+// A small, well-damped wooden board: 12 modes 220 Hz - 5 kHz, decays 25-300 ms, with impact,
+// friction and its noise term on (scene, skip and allocation tests).
+inline MaterialParams WoodLikeBoard() {
+  MaterialParams m;
+  m.resonator.mode_count = 12;
+  for (int i = 0; i < 12; ++i) {
+    auto& mode = m.resonator.modes[static_cast<std::size_t>(i)];
+    mode.frequency_hz = 220.0 * (i + 1) * (1.0 + 0.07 * i);
+    mode.decay_s = 0.3 / (1.0 + i);
+    mode.mass_kg = 0.03;
+    mode.gain = 1.0 / (1.0 + 0.5 * i);
+  }
+  m.impact.stiffness = 3e7;
+  m.impact.dissipation_s_per_m = 0.4;
+  m.friction.noise_coefficient = 0.5;  // exercise the noise generator too
+  return m;
+}
+
 inline MaterialParams SdtRubbingDemo() {
   MaterialParams m;
   m.impact.enabled = false;

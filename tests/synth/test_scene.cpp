@@ -19,22 +19,6 @@ namespace {
 
 constexpr double kFs = 48000.0;
 
-MaterialParams Wood() {
-  MaterialParams m;
-  m.resonator.mode_count = 12;
-  for (int i = 0; i < 12; ++i) {
-    auto& mode = m.resonator.modes[static_cast<std::size_t>(i)];
-    mode.frequency_hz = 220.0 * (i + 1) * (1.0 + 0.07 * i);
-    mode.decay_s = 0.3 / (1.0 + i);
-    mode.mass_kg = 0.03;
-    mode.gain = 1.0 / (1.0 + 0.5 * i);
-  }
-  m.impact.stiffness = 3e7;
-  m.impact.dissipation_s_per_m = 0.4;
-  m.friction.noise_coefficient = 0.5;  // exercise the noise generator too
-  return m;
-}
-
 // A bumpy 1-D profile: 4000 samples (0.6 m) of ridges up to 50 µm.
 std::vector<float> BumpyProfile() {
   std::vector<float> h(4000);
@@ -45,11 +29,11 @@ std::vector<float> BumpyProfile() {
   return h;
 }
 
+using test::RenderTimed;
+using test::TimedCommand;
+using test::WoodLikeBoard;
+
 // A gesture with every kind of event, at absolute frames.
-struct TimedCommand {
-  long frame;
-  ProbeCommand command;
-};
 std::vector<TimedCommand> Gesture() {
   std::vector<TimedCommand> g;
   ProbeCommand c;
@@ -86,26 +70,6 @@ std::vector<TimedCommand> Gesture() {
   return g;
 }
 
-std::vector<float> Render(Scene& scene, const std::vector<TimedCommand>& gesture, long total,
-                          int block) {
-  std::vector<float> out(2 * static_cast<std::size_t>(total));
-  std::vector<ProbeCommand> pending;
-  std::size_t next = 0;
-  for (long start = 0; start < total; start += block) {
-    const int frames = static_cast<int>(std::min<long>(block, total - start));
-    pending.clear();
-    while (next < gesture.size() && gesture[next].frame < start + frames) {
-      ProbeCommand c = gesture[next].command;
-      c.frame_offset = static_cast<std::uint32_t>(gesture[next].frame - start);
-      pending.push_back(c);
-      ++next;
-    }
-    scene.Process(pending.data(), static_cast<int>(pending.size()),
-                  out.data() + 2 * static_cast<std::size_t>(start), frames);
-  }
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("block rendering equals per-sample rendering bit for bit", "[dsp][render]") {
@@ -115,8 +79,8 @@ TEST_CASE("block rendering equals per-sample rendering bit for bit", "[dsp][rend
   for (const int block : {1, 7, 64, 128, 480, 24000}) {
     Scene scene;
     scene.Init(kFs);
-    scene.Prepare(Wood(), OutputParams{}, field.view);
-    const auto out = Render(scene, Gesture(), total, block);
+    scene.Prepare(WoodLikeBoard(), OutputParams{}, field.view);
+    const auto out = RenderTimed(scene, Gesture(), total, block);
     if (reference.empty()) {
       reference = out;
       float peak = 0.0f;
@@ -134,12 +98,12 @@ TEST_CASE("Reset() makes a used scene render exactly like a fresh one", "[dsp][r
   Scene fresh, used;
   for (Scene* s : {&fresh, &used}) {
     s->Init(kFs);
-    s->Prepare(Wood(), OutputParams{}, field.view);
+    s->Prepare(WoodLikeBoard(), OutputParams{}, field.view);
   }
-  Render(used, Gesture(), 20000, 256);
+  RenderTimed(used, Gesture(), 20000, 256);
   used.Reset();
-  const auto a = Render(fresh, Gesture(), 20000, 256);
-  const auto b = Render(used, Gesture(), 20000, 256);
+  const auto a = RenderTimed(fresh, Gesture(), 20000, 256);
+  const auto b = RenderTimed(used, Gesture(), 20000, 256);
   CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
@@ -151,7 +115,7 @@ TEST_CASE("output never exceeds 1 nor becomes NaN with exaggerated gains and hos
   loud.haptic_gain = 1e6;
   Scene scene;
   scene.Init(kFs);
-  scene.Prepare(Wood(), loud, field.view);
+  scene.Prepare(WoodLikeBoard(), loud, field.view);
   auto gesture = Gesture();
   ProbeCommand bad;
   bad.tip_down = true;
@@ -177,7 +141,7 @@ TEST_CASE("output never exceeds 1 nor becomes NaN with exaggerated gains and hos
   gesture.push_back({25000, sane});
   sane.tip_down = true;
   gesture.push_back({25001, sane});
-  const auto out = Render(scene, gesture, 30000, 128);
+  const auto out = RenderTimed(scene, gesture, 30000, 128);
   float peak = 0.0f;
   for (float s : out) {
     REQUIRE(std::isfinite(s));
@@ -295,7 +259,7 @@ TEST_CASE(
     "[dsp][render]") {
   Scene scene;
   scene.Init(kFs);
-  scene.Prepare(Wood(), OutputParams{}, HeightFieldView{});
+  scene.Prepare(WoodLikeBoard(), OutputParams{}, HeightFieldView{});
   CHECK(scene.IsIdle());
   std::vector<float> out(2 * 48000);
   ProbeCommand tap;
@@ -325,7 +289,7 @@ TEST_CASE(
     "[dsp][render]") {
   auto sweep = [](const std::vector<float>& profile, double* x_after) {
     test::OwnedField field(static_cast<int>(profile.size()), 1, 0.153e-3, profile);
-    MaterialParams m = Wood();
+    MaterialParams m = WoodLikeBoard();
     m.friction.enabled = false;  // the profile alone, through the impact model
     for (auto& mode : m.resonator.modes) mode.decay_s *= 0.2;  // the landing rings out in 1 s
     Scene scene;
@@ -413,13 +377,13 @@ TEST_CASE(
     "[dsp][render]") {
   test::OwnedField field(4000, 1, 0.153e-3, BumpyProfile());
   auto render = [&](bool impact, bool friction) {
-    MaterialParams m = Wood();
+    MaterialParams m = WoodLikeBoard();
     m.impact.enabled = impact;
     m.friction.enabled = friction;
     Scene scene;
     scene.Init(kFs);
     scene.Prepare(m, OutputParams{}, field.view);
-    const auto out = Render(scene, Gesture(), 24000, 128);
+    const auto out = RenderTimed(scene, Gesture(), 24000, 128);
     double energy = 0.0;
     for (float s : out) energy += static_cast<double>(s) * s;
     return energy;

@@ -22,23 +22,6 @@ namespace {
 
 constexpr double kFs = 48000.0;
 
-// A small, well-damped board (wood-like: 12 modes 220 Hz - 5 kHz, decays 25-300 ms).
-MaterialParams Board() {
-  MaterialParams m;
-  m.resonator.mode_count = 12;
-  for (int i = 0; i < 12; ++i) {
-    auto& mode = m.resonator.modes[static_cast<std::size_t>(i)];
-    mode.frequency_hz = 220.0 * (i + 1) * (1.0 + 0.07 * i);
-    mode.decay_s = 0.3 / (1.0 + i);
-    mode.mass_kg = 0.03;
-    mode.gain = 1.0 / (1.0 + 0.5 * i);
-  }
-  m.impact.stiffness = 3e7;
-  m.impact.dissipation_s_per_m = 0.4;
-  m.friction.noise_coefficient = 0.5;
-  return m;
-}
-
 std::vector<float> Ridges() {
   std::vector<float> h(4000);
   for (std::size_t i = 0; i < h.size(); ++i) {
@@ -105,7 +88,7 @@ TEST_CASE(
     skips.idle_blocks = skip;
     scene.SetSkips(skips);
     scene.Init(kFs);
-    scene.Prepare(Board(), OutputParams{}, field.view);
+    scene.Prepare(test::WoodLikeBoard(), OutputParams{}, field.view);
     // Block by block, noting when the scene starts skipping.
     std::vector<float> out(2 * static_cast<std::size_t>(total));
     std::size_t next = 0;
@@ -156,7 +139,7 @@ TEST_CASE(
     "bit that of the material without them",
     "[dsp][render]") {
   test::OwnedField field(4000, 1, 0.153e-3, Ridges());
-  MaterialParams base = Board();
+  MaterialParams base = test::WoodLikeBoard();
   MaterialParams extra = base;
   auto add = [&](ModeParams mode) {
     extra.resonator.modes[static_cast<std::size_t>(extra.resonator.mode_count++)] = mode;
@@ -201,7 +184,7 @@ TEST_CASE(
   // The complement of the previous test: when the skipped mode can neither be heard (gain below
   // kNegligibleGain) nor noticeably load the contact (heavy), computing it changes nothing.
   test::OwnedField field(4000, 1, 0.153e-3, Ridges());
-  MaterialParams m = Board();
+  MaterialParams m = test::WoodLikeBoard();
   m.resonator.modes[static_cast<std::size_t>(m.resonator.mode_count++)] =
       ModeParams{1800.0, 0.2, 1e4, 1e-10};
   std::vector<test::TimedCommand> gesture = {{0, Stroke(0.01, 0.0)}};  // a tap, held
@@ -228,7 +211,7 @@ TEST_CASE(
   // (Sliding friction with noise is chaotic — a 1e-14 change of a modal mass moves the output by
   // 0.2 within 0.1 s — so the comparison only holds because every skipped stretch lies outside the
   // stroke.)
-  MaterialParams m = Board();
+  MaterialParams m = test::WoodLikeBoard();
   m.impact.enabled = false;
   for (auto& mode : m.resonator.modes) mode.decay_s *= 0.2;
   const long total = static_cast<long>(3.0 * kFs);
@@ -292,7 +275,7 @@ TEST_CASE(
 
 TEST_CASE("friction skip: a pen landing on the board is never skipped while the landing moves it",
           "[dsp][render]") {
-  MaterialParams m = Board();
+  MaterialParams m = test::WoodLikeBoard();
   Scene scene;
   scene.Init(kFs);
   scene.Prepare(m, OutputParams{}, HeightFieldView{});
@@ -321,7 +304,7 @@ TEST_CASE(
     output.haptic_enabled = haptic;
     Scene scene;
     scene.Init(kFs);
-    scene.Prepare(Board(), output, field.view);
+    scene.Prepare(test::WoodLikeBoard(), output, field.view);
     return test::RenderTimed(scene, gesture, 24000, 128);
   };
   const auto with = render(true), without = render(false);
@@ -356,12 +339,12 @@ TEST_CASE(
   // Reference: a scene prepared on the other field.
   Scene reference;
   reference.Init(kFs);
-  reference.Prepare(Board(), OutputParams{}, swapped.view);
+  reference.Prepare(test::WoodLikeBoard(), OutputParams{}, swapped.view);
   const auto expected = test::RenderTimed(reference, gesture, total, 128);
 
   Scene scene;
   scene.Init(kFs);
-  scene.Prepare(Board(), OutputParams{}, field.view);
+  scene.Prepare(test::WoodLikeBoard(), OutputParams{}, field.view);
   // After Prepare: poison the raw heights and replace the summed-area table in place by the
   // other field's. A scene that derived anything from the heights per block would now produce
   // NaN (or the first field's sound); one reading only the load-time table plays the other field.
