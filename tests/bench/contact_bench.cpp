@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/fft.h"
 #include "../synth/stress_sets.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/contact_scheme_names.h"
@@ -224,30 +225,7 @@ std::vector<double> WelchPower(const std::vector<float>& x) {
       re[i] = w * static_cast<double>(x[start + i]);
       im[i] = 0.0;
     }
-    for (std::size_t i = 1, j = 0; i < kN; ++i) {
-      std::size_t bit = kN >> 1;
-      for (; j & bit; bit >>= 1) j ^= bit;
-      j ^= bit;
-      if (i < j) {
-        std::swap(re[i], re[j]);
-        std::swap(im[i], im[j]);
-      }
-    }
-    for (std::size_t len = 2; len <= kN; len <<= 1) {
-      const double angle = -2.0 * std::numbers::pi / static_cast<double>(len);
-      for (std::size_t i = 0; i < kN; i += len) {
-        for (std::size_t k = 0; k < len / 2; ++k) {
-          const double wr = std::cos(angle * static_cast<double>(k));
-          const double wi = std::sin(angle * static_cast<double>(k));
-          const std::size_t a = i + k, b = i + k + len / 2;
-          const double tr = re[b] * wr - im[b] * wi, ti = re[b] * wi + im[b] * wr;
-          re[b] = re[a] - tr;
-          im[b] = im[a] - ti;
-          re[a] += tr;
-          im[a] += ti;
-        }
-      }
-    }
+    sas::test::FftInPlace(re, im);
     for (std::size_t k = 0; k < kN / 2; ++k) power[k] += re[k] * re[k] + im[k] * im[k];
   }
   return power;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "dent_difference.h"
 #include "ui/deformation_field.h"
 #include "ui/picture_io.h"
 
@@ -55,27 +56,12 @@ bool ReadWav(const std::string& path, std::vector<float>* frames, int* channels,
   return true;
 }
 
-// Mean absolute RGB difference near (cx, cy) (inside 0.8 R) and far from it (beyond 3 R).
+// Mean absolute RGB difference near (cx, cy) and far from it (dent_difference.h).
 void Differences(const sas::ui::ImageRgba& a, const sas::ui::ImageRgba& b, int cx, int cy,
                  double* near_mean, double* far_mean) {
-  const double radius = sas::ui::DeformationConfig{}.radius_px;
-  double near_sum = 0, far_sum = 0, near_n = 0, far_n = 0;
-  for (int y = 0; y < a.height(); y += 1) {
-    for (int x = 0; x < a.width(); x += 1) {
-      const auto p = a.at(x, y), q = b.at(x, y);
-      const double d = (std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b)) / 3.0;
-      const double r = std::hypot(x - cx, y - cy);
-      if (r < 0.8 * radius) {
-        near_sum += d;
-        ++near_n;
-      } else if (r > 3.0 * radius) {
-        far_sum += d;
-        ++far_n;
-      }
-    }
-  }
-  *near_mean = near_n > 0 ? near_sum / near_n : 0.0;
-  *far_mean = far_n > 0 ? far_sum / far_n : 0.0;
+  const auto d = sas::test::MeasureDent(a, b, cx, cy);
+  *near_mean = d.near_mean;
+  *far_mean = d.far_mean;
 }
 
 std::map<std::string, std::string> Fields(const std::string& line) {

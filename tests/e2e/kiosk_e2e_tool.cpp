@@ -33,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "dent_difference.h"
 #include "surface/audio_file.h"
 #include "ui/picture_io.h"
 
@@ -200,29 +201,13 @@ int Matches(const std::string& shot_path, const std::vector<std::string>& pictur
 }
 
 // The dent: pixels within 0.8 R of (cx, cy) differ clearly from the fitted picture, pixels beyond
-// 3 R do not (R = the deformation's default radius, 56 px).
+// 3 R do not (R = the deformation's default radius, 56 px; dent_difference.h).
 int Dent(const std::string& shot_path, const std::string& picture_path, int cx, int cy) {
   const auto shot = sas::ui::LoadPicture(shot_path);
   const auto picture =
       sas::ui::ResizeToCover(sas::ui::LoadPicture(picture_path), shot.width(), shot.height());
-  const double radius = 56.0;
-  double near_sum = 0, far_sum = 0, near_n = 0, far_n = 0;
-  for (int y = 0; y < shot.height(); ++y) {
-    for (int x = 0; x < shot.width(); ++x) {
-      const auto p = shot.at(x, y), q = picture.at(x, y);
-      const double d = (std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b)) / 3.0;
-      const double r = std::hypot(x - cx, y - cy);
-      if (r < 0.8 * radius) {
-        near_sum += d;
-        ++near_n;
-      } else if (r > 3.0 * radius) {
-        far_sum += d;
-        ++far_n;
-      }
-    }
-  }
-  const double near_mean = near_sum / std::max(1.0, near_n),
-               far_mean = far_sum / std::max(1.0, far_n);
+  const auto dent = sas::test::MeasureDent(shot, picture, cx, cy);
+  const double near_mean = dent.near_mean, far_mean = dent.far_mean;
   std::printf("dent: near mean difference %.2f, far %.3f\n", near_mean, far_mean);
   return near_mean > 6.0 && far_mean < 2.0 ? 0 : 1;
 }

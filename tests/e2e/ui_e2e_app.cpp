@@ -18,6 +18,7 @@
 #include <string>
 #include <thread>
 
+#include "dent_difference.h"
 #include "ui/kiosk_window.h"
 #include "ui/picture_io.h"
 #include "ui/texture_view.h"
@@ -152,25 +153,8 @@ int Check(int argc, char** argv) {
   const ImageRgba shot = sas::ui::LoadPicture(argv[2]);
   const ImageRgba pic = Picture(argv[3], shot.width(), shot.height());
   const int cx = std::atoi(argv[4]), cy = std::atoi(argv[5]);
-  const float radius = sas::ui::DeformationConfig{}.radius_px;
-  double near_sum = 0, far_sum = 0;
-  double near_n = 0, far_n = 0;
-  for (int y = 0; y < shot.height(); ++y) {
-    for (int x = 0; x < shot.width(); ++x) {
-      const auto a = shot.at(x, y), b = pic.at(x, y);
-      const double d = (std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b)) / 3.0;
-      const double r = std::hypot(x - cx, y - cy);
-      if (r < 0.8 * radius) {
-        near_sum += d;
-        ++near_n;
-      } else if (r > 3.0 * radius) {
-        far_sum += d;
-        ++far_n;
-      }
-    }
-  }
-  const double near_mean = near_n > 0 ? near_sum / near_n : 0.0;
-  const double far_mean = far_n > 0 ? far_sum / far_n : 0.0;
+  const auto dent = sas::test::MeasureDent(shot, pic, cx, cy);
+  const double near_mean = dent.near_mean, far_mean = dent.far_mean;
   std::printf("near-dent mean difference %.2f, far mean difference %.3f\n", near_mean, far_mean);
   return near_mean > 8.0 && far_mean < 1.0 ? 0 : 1;
 }
