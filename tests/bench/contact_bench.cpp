@@ -24,7 +24,8 @@
 // measurement), contact_bench.md (the tables README.md includes), contact_bench.png (error
 // against cost, log-log, one colour and marker per scheme, Pareto front per case).
 //
-// Usage: contact_bench [--out DIR] [--quick] [--reps N] [--stress N] [--update-readme FILE]
+// Usage: contact_bench [--out DIR] [--quick] [--scene-only] [--reps N] [--stress N]
+//                      [--update-readme FILE]
 // (--update-readme puts the markdown between FILE's `<!-- bench:begin -->` and
 // `<!-- bench:end -->` lines.)
 #include <algorithm>
@@ -69,6 +70,7 @@ constexpr std::array<synth::ContactScheme, 4> kAllSchemes = {
 struct Options {
   std::string out_dir = SAS_BENCH_RESULTS_DIR;
   bool quick = false;
+  bool scene_only = false;  // --scene-only: just the acceptance-2 cost figures (profiling)
   int reps = 3;
   long stress = 0;
   std::string readme;  // --update-readme: replace the table between the bench markers
@@ -569,6 +571,8 @@ Options ParseArgs(int argc, char** argv) {
       o.out_dir = value();
     } else if (a == "--quick") {
       o.quick = true;
+    } else if (a == "--scene-only") {
+      o.scene_only = true;
     } else if (a == "--reps") {
       o.reps = std::max(1, std::atoi(value().c_str()));
     } else if (a == "--stress") {
@@ -581,7 +585,7 @@ Options ParseArgs(int argc, char** argv) {
       o.readme = value();
     } else if (a == "--help" || a == "-h") {
       std::printf(
-          "usage: contact_bench [--out DIR] [--quick] [--reps N] [--stress N] "
+          "usage: contact_bench [--out DIR] [--quick] [--scene-only] [--reps N] [--stress N] "
           "[--update-readme README.md]\n");
       std::exit(0);
     } else {
@@ -616,6 +620,7 @@ int main(int argc, char** argv) {
 
   // Impact.
   std::map<synth::ContactScheme, double> log_error_at_64;
+  if (opt.scene_only) schemes.clear();  // skip the sweeps: only the acceptance-2 figures
   for (auto scheme : schemes) {
     for (int os : oversamples) {
       for (double k : {1e6, 1e8, 1e10, 1e12}) {
@@ -629,7 +634,8 @@ int main(int argc, char** argv) {
     std::printf("impact: %s done\n", SchemeName(scheme).c_str());
     std::fflush(stdout);
   }
-  synth::ContactScheme reference = schemes.front();
+  synth::ContactScheme reference =
+      schemes.empty() ? synth::kDefaultContactScheme : schemes.front();
   for (auto s : schemes)
     if (log_error_at_64[s] < log_error_at_64[reference]) reference = s;
   std::printf("reference for friction and scene: %s x64 (smallest impact error at x64)\n",
@@ -640,6 +646,7 @@ int main(int argc, char** argv) {
   const kiosk::Material wood = kiosk::FindMaterial("wood", kiosk::MaterialSearchDirs(""));
   const long rub_frames = static_cast<long>((opt.quick ? 0.2 : 0.5) * kFs);
   for (double v : {0.1, 2.0}) {
+    if (opt.scene_only) break;
     synth::MaterialParams m = wood.params;
     m.impact.enabled = false;
     m.friction.noise_coefficient = 0.0;
@@ -685,7 +692,7 @@ int main(int argc, char** argv) {
   kiosk_output.sound_gain = std::pow(10.0, 12.0 / 20.0);
   kiosk_output.haptic_gain = std::pow(10.0, 6.0 / 20.0);
   const long stroke_frames = static_cast<long>((opt.quick ? 0.6 : stroke.duration_s()) * kFs);
-  {
+  if (!opt.scene_only) {
     synth::MaterialParams m = scene_material;
     m.impact.scheme = reference;
     m.impact.oversample = 64;
@@ -782,6 +789,7 @@ int main(int argc, char** argv) {
   std::printf("  without the haptic path: %.0f ns/sample\n", no_haptic_ns);
   std::printf("idle scene: %.2f ns/sample = %.3f %% of the active scene's cost (target <= 1 %%)\n",
               idle_ns, 100.0 * idle_ratio);
+  if (opt.scene_only) return 0;
 
   // Denormals: a 60 s ring-down of the 32-mode plate plus fast-decaying modes.
   double first_ns = 0.0, last_ns = 0.0;
