@@ -53,10 +53,11 @@
 //   alternative BristleUpdate::kExplicitEuler (z1 = z0 + Δu (1 - α(z0) z0/z_ss), force from z0) is
 //   the textbook explicit update, kept only so the benchmark can show where it chatters
 //   (friction.md, trap 1: T |v| / |z_ss| > 2).
-// Δx and Δu are affine in (F, f) through the exact mode/probe maps, so each force is the root of a
-// scalar monotone (normal) or continuous (friction) equation, found by a bracketed, safeguarded
-// Newton/secant iteration; the two are coupled through the shared resonator and iterated
-// (block Gauss–Seidel, contracting because the coupling is a shared compliance).
+// Δx and Δu are affine in (F, f) through the exact mode/probe maps. The two forces are coupled
+// through the shared resonator and solved as one scalar equation in the slip u (f(u), then the
+// scheme's normal force for that f, then the slip the bodies make under both: a secant iteration
+// with a bracketed fallback); the normal solve is a bracketed, safeguarded Newton on a monotone
+// equation (discrete gradient, trapezoid) or one linear solve (IEQ, explicit).
 // Energy is therefore never created by the numerics (tested for every scheme), for any k, α, mass
 // or step; accuracy is first (explicit) or second order in h, so the contact is sub-stepped
 // ("oversampled") while it is active, by as much as the scheme's measured accuracy needs
@@ -101,6 +102,14 @@ struct ImpactModel {
   Shape shape_ = Shape::kThreeHalves;
 };
 
+// The Stribeck deflection z_ss(v) = [μ_d + (μ_s - μ_d) exp(-(v/v_s)²)] f_N / σ0 and the break-away
+// deflection z_ba = c_ba μ_d f_N / σ0 for one step (friction.md), both magnitudes.
+struct BristleLimits {
+  bool contact = false;  // f_N > 0 (otherwise the bristle is relaxed and carries no force)
+  double z_ss = 0.0;
+  double z_ba = 0.0;
+};
+
 struct FrictionModel {
   bool enabled = false;
   double sigma0 = 0.0, sigma1 = 0.0, sigma2 = 0.0, sigma3 = 0.0;
@@ -112,6 +121,8 @@ struct FrictionModel {
   double SteadyDeflection(double v_mps, double fn) const;
   // Steady sliding force magnitude σ0 |z_ss(v)| + σ2 |v| (the plastic regime).
   double SteadySlidingForce(double v_mps, double fn) const;
+  // z_ss and z_ba at slip speed |v| and normal force fn.
+  BristleLimits Limits(double slip_velocity_mps, double fn) const;
 };
 
 // Result of advancing the bristle along a slip du over a step h at normal force fn.
@@ -120,6 +131,12 @@ struct BristleStep {
   double mean_z = 0.0;  // slip-weighted mean deflection over the step (z0 if du = 0)
 };
 BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, double h, double fn);
+// The same with z_ss and z_ba given: the contact step freezes them at the step's predicted slip
+// speed, so the step's friction force is a function of the slip alone, and z_ss costs one exp
+// per step rather than one per solver iteration. Any z_ss > 0 keeps the update passive
+// (work = Δ(σ0 z²/2) + σ0 ∫ α w²/z_ss ≥ Δ(σ0 z²/2)).
+BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
+                             const BristleLimits& limits);
 
 // Friction force over the step for slip du (see the header comment); `noise_n` is σ3 w.
 double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
@@ -139,8 +156,8 @@ struct ContactStepInput {
   double z0 = 0.0;
   double friction_normal_n = 0.0;  // f_N seen by the friction (≥ 0)
   double noise_n = 0.0;            // σ3 w for this step
-  double friction_guess_n = 0.0;   // friction force of the previous step (Gauss–Seidel start)
-  double normal_guess_n = 0.0;     // normal force of the previous step (IEQ mid-step predictor)
+  double normal_guess_n = 0.0;     // normal force of the previous step (IEQ mid-step predictor,
+                                   // friction's predicted slip speed)
   double xdot0 = 0.0;              // compression rate at the start (explicit, trapezoid schemes)
   double aux0 = 0.0;               // the scheme's contact state: energy E (explicit, trapezoid)
                                    // or ψ (energy-quadratised); unused by the discrete gradient
@@ -204,6 +221,27 @@ inline constexpr double kTargetContactSamples = TargetContactSamples(kDefaultCon
 // measured 2.9e-4 at μ·v = 1) while bounding the cost of a sustained stiff contact.
 inline constexpr int kMaxOversample = 128;
 double RigidWallContactTime(double mass_kg, double k, double alpha, double v_in);  // λ = 0
+
+// Adaptive oversampling (the automatic choice, ImpactParams::oversample = 0). The sub-steps a
+// contact needs depend on how hard it is: an impact at speed v lasts t_c(v) ∝ v^(-(α-1)/(α+1))
+// and its restitution error is C / N^p in the sub-steps per contact N. Required accuracy: relative
+// 1e-4 (kRestitutionTolerance) for impacts at v >= kAbsoluteSpeedFloor, and below that an
+// ABSOLUTE rebound-speed error of 1e-4 · kAbsoluteSpeedFloor = 1e-5 m/s (relative 1e-4 · 0.1 / v):
+// a pen resting or sliding on the surface, whose bumps close at mm/s, needs one sub-step, while a
+// tap at 0.3 m/s gets the sub-steps of the 1e-4 rule. The kernel re-chooses the count at the start
+// of each compression from the contact's impact speed (contact_kernel.h), among 1, 2, 4, ... up
+// to ChooseContactOversample's count (which covers 3 m/s).
+inline constexpr double kRestitutionTolerance = 1e-4;
+inline constexpr double kAbsoluteSpeedFloor = 0.1;  // m/s
+// Sub-steps per sample an impact at v_mps needs (1 .. kMaxOversample).
+int ContactSubstepsForSpeed(const ImpactParams& impact, double probe_mass_kg, double sample_rate_hz,
+                            double v_mps);
+// The largest impact speed that `substeps` sub-steps per sample serve (m/s).
+double MaxSpeedForSubsteps(const ImpactParams& impact, double probe_mass_kg, double sample_rate_hz,
+                           int substeps);
+// min over x of V(x) - f x, the potential energy of the contact's static equilibrium under a push
+// f >= 0 (-α/(α+1) f x_eq, x_eq = (f/k)^(1/α)); 0 without push.
+double EquilibriumEnergy(const ImpactModel& impact, double push_n);
 // Contact sub-steps per sample so that an impact at v_ref = 1 m/s of the probe mass against a
 // rigid body lasts at least TargetContactSamples(impact.scheme) sub-steps (capped at
 // kMaxOversample); impact.oversample > 0 is taken as given.
@@ -218,7 +256,7 @@ struct ImpactRunResult {
   double max_compression_m = 0.0;    // peak of the scheme's own (piecewise parabolic) trajectory
   double contact_time_s = 0.0;       // first touch to separation (crossings interpolated)
   double samples_per_contact = 0.0;  // contact_time_s · fs
-  int oversample = 1;                // sub-steps per sample used
+  int oversample = 1;                // sub-steps per sample used (the most, if adaptive)
   ContactScheme scheme_used = kDefaultContactScheme;  // see IsContactSchemeImplemented
   bool separated = false;                             // false if the probe had not left after 10 s
 };

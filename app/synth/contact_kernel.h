@@ -11,10 +11,15 @@
 // contact force F; the resonator receives -F (normal) + f (friction, along the stroke, acting on
 // the same modal coordinates: one pickup shared by both interactions, as in the SDT).
 // While the contact is active (or about to start within the sample) the sample is split into
-// `substeps` equal sub-steps with the modes advanced by their exact sub-step maps; otherwise one
-// exact full-sample step of free motion is taken.
+// equal sub-steps with the modes advanced by their exact sub-step maps; otherwise one exact
+// full-sample step of free motion is taken. With adaptive oversampling (the automatic choice) the
+// number of sub-steps is chosen per sample from the contact's impact speed (ChooseSubstepLevel):
+// a hard landing or a bump gets what its restitution accuracy needs, a pen resting or sliding on
+// the surface gets one.
 
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "synth/contact.h"
 #include "synth/modal_resonator.h"
@@ -29,12 +34,28 @@ struct ContactKernelConfig {
   double probe_mass_kg = 0.01;
   double period_s = 1.0 / 48000.0;
   double sub_step_s = 1.0 / 48000.0;
-  int substeps = 1;
+  int substeps = 1;  // the finest level (the material's count)
+  // Adaptive oversampling: level L of the ModalState (level_substeps[L] sub-steps) serves impact
+  // speeds up to sqrt(level_speed_sq[L]) (ContactSubstepsForSpeed); the finest level, any speed.
+  bool adaptive = false;
+  std::array<double, kMaxSubstepLevels> level_speed_sq{};
 
   void SetTiming(double sample_rate_hz, int contact_substeps) {
     substeps = contact_substeps < 1 ? 1 : contact_substeps;
     period_s = 1.0 / sample_rate_hz;
     sub_step_s = period_s / static_cast<double>(substeps);
+  }
+  // Fills level_speed_sq for the levels of `modes` (adaptive only). Not real-time.
+  void SetLevels(const ImpactParams& params, const ModalState& modes, double sample_rate_hz) {
+    level_speed_sq.fill(0.0);
+    for (int level = 0; level < modes.level_count; ++level) {
+      const auto l = static_cast<std::size_t>(level);
+      level_speed_sq[l] =
+          level + 1 == modes.level_count
+              ? std::numeric_limits<double>::infinity()
+              : MaxSpeedForSubsteps(params, probe_mass_kg, sample_rate_hz, modes.level_substeps[l]);
+      level_speed_sq[l] *= level_speed_sq[l];
+    }
   }
 };
 
@@ -50,6 +71,13 @@ struct ProbeDynamics {
   double contact_energy_j = 0.0;  // energy the scheme holds in the contact (V(x), E or ψ²/2)
   int substeps_used = 0;
   bool touched = false;  // a contact force acted during the last sample
+  // Adaptive oversampling: the level held over the current compression (re-chosen when a new
+  // compression starts), whether the contact was closing at the last sample, and the push whose
+  // equilibrium energy min_x [V(x) - f_N x] is cached.
+  int held_level = 0;
+  bool closing = false;
+  double equilibrium_push_n = 0.0;
+  double equilibrium_energy_j = 0.0;
 };
 
 // What the control side imposes over one sample.
@@ -108,14 +136,45 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.friction_n = 0.0;
     probe.contact_aux = 0.0;
     probe.contact_energy_j = 0.0;
+    probe.held_level = 0;
+    probe.closing = false;
     probe.compression_m = drive.surface_end_m + modes.ContactDisplacement() - probe.height_m;
     probe.substeps_used = 1;
     observe(period, x_start, probe.compression_m, v0, probe.velocity_mps);
     return;
   }
 
-  const int n = config.substeps;
-  const double h = config.sub_step_s;
+  int level = modes.level_count - 1;
+  if (config.adaptive) {
+    // Impact speed: the closing speed the contact would reach at its equilibrium under the push,
+    // v² = ẋ² + 2 [V(x) - f_N x - min(V - f_N x)] / m (energy of the probe's motion relative to
+    // the surface, measured from the static equilibrium; = ẋ² in free flight without push).
+    const double xdot = (drive.surface_end_m - drive.surface_begin_m) / period +
+                        modes.ContactVelocity() - probe.velocity_mps;
+    if (drive.push_n != probe.equilibrium_push_n) {
+      probe.equilibrium_push_n = drive.push_n;
+      probe.equilibrium_energy_j = EquilibriumEnergy(config.impact, drive.push_n);
+    }
+    const double excess =
+        config.impact.Potential(x_start) - drive.push_n * x_start - probe.equilibrium_energy_j;
+    const double speed_sq = xdot * xdot + 2.0 * std::max(excess, 0.0) / mass;
+    int needed = 0;
+    while (needed + 1 < modes.level_count &&
+           speed_sq > config.level_speed_sq[static_cast<std::size_t>(needed)]) {
+      ++needed;
+    }
+    // Hold the level over one compression: re-chosen when the contact starts closing again.
+    const bool closing = xdot > 0.0;
+    if (closing && !probe.closing) probe.held_level = needed;
+    probe.closing = closing;
+    probe.held_level = std::max(probe.held_level, needed);
+    level = probe.held_level;
+  }
+  const auto level_index = static_cast<std::size_t>(level);
+  const auto& sub_maps = modes.level_maps[level_index];
+  const int n = modes.level_substeps[level_index];
+  const double h = n == config.substeps ? config.sub_step_s : period / static_cast<double>(n);
+  const double sub_compliance = modes.level_compliance[level_index];
   const double inv_n = 1.0 / static_cast<double>(n);
   const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
   const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) / period;
@@ -126,16 +185,15 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
                    : drive.surface_begin_m + (drive.surface_end_m - drive.surface_begin_m) *
                                                  static_cast<double>(j + 1) * inv_n;
     const double x0 = surface + contact_displacement - probe.height_m;
-    const double free_resonator = FreeContactMotion(modes, modes.sub);
+    const double free_resonator = FreeContactMotion(modes, n == 1 ? modes.full : sub_maps);
     const double v0 = probe.velocity_mps;
     ContactStepInput in;
     in.h = h;
     in.x0 = x0;
-    in.coupling = modes.sub_compliance;
+    in.coupling = sub_compliance;
     in.impact_on = impact_on;
     in.friction_on = friction_on;
     in.z0 = probe.bristle_m;
-    in.friction_guess_n = probe.friction_n;
     in.noise_n = drive.noise_n;
     in.normal_guess_n = probe.normal_n;
     in.aux0 = probe.contact_aux;
@@ -145,7 +203,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     if (impact_on) {
       in.free_dx =
           (surface_next - surface) + free_resonator - (v0 * h - 0.5 * drive.push_n / mass * h * h);
-      in.normal_compliance = modes.sub_compliance + 0.5 * h * h / mass;
+      in.normal_compliance = sub_compliance + 0.5 * h * h / mass;
       // Friction sees the normal force of the previous sub-step (explicit in f_N only: the
       // friction step stays passive for any f_N >= 0).
       in.friction_normal_n = drive.friction_share * (probe.normal_n > 0.0 ? probe.normal_n : 0.0);
@@ -170,7 +228,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
         break;
     }
 
-    contact_displacement += AdvanceModes(modes, modes.sub, out.friction_n - out.normal_n);
+    AdvanceModes(modes, sub_maps, out.friction_n - out.normal_n);
+    contact_displacement = modes.ContactDisplacement();
     if (impact_on) {
       const double acc = (out.normal_n - drive.push_n) / mass;
       probe.height_m += v0 * h + 0.5 * acc * h * h;

@@ -29,12 +29,25 @@ ModeStep ComputeModeStep(double frequency_hz, double decay_s, double mass_kg, do
 }
 
 void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps,
-                         bool keep_inaudible) {
+                         bool keep_inaudible, bool adaptive) {
   count = 0;
   sub_compliance = 0.0;
   full_compliance = 0.0;
+  // Every slot past the modes stays zero: the paired passes read one slot beyond an odd count.
+  full = ModeMaps{};
+  sub = ModeMaps{};
+  level_maps.fill(ModeMaps{});
+  gain.fill(0.0);
+  const int finest = substeps < 1 ? 1 : substeps;
+  level_count = 0;
+  if (adaptive) {
+    for (int n = 1; n < finest && level_count < kMaxSubstepLevels - 1; n *= 2) {
+      level_substeps[static_cast<std::size_t>(level_count++)] = n;
+    }
+  }
+  level_substeps[static_cast<std::size_t>(level_count++)] = finest;
+  level_compliance.fill(0.0);
   const double step_s = 1.0 / sample_rate_hz;
-  const double sub_s = step_s / static_cast<double>(substeps < 1 ? 1 : substeps);
   const int n = params.mode_count < kMaxModes ? params.mode_count : kMaxModes;
   for (int i = 0; i < n; ++i) {
     const ModeParams& mode = params.modes[static_cast<std::size_t>(i)];
@@ -46,16 +59,46 @@ void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, i
     if (!audible && !keep_inaudible) continue;
     const auto k = static_cast<std::size_t>(count);
     const double omega_d = 2.0 * std::numbers::pi * mode.frequency_hz;
-    full[k] = ComputeModeStep(mode.frequency_hz, mode.decay_s, mode.mass_kg, step_s);
-    sub[k] = ComputeModeStep(mode.frequency_hz, mode.decay_s, mode.mass_kg, sub_s);
+    const ModeStep full_map =
+        ComputeModeStep(mode.frequency_hz, mode.decay_s, mode.mass_kg, step_s);
+    full.Set(k, full_map);
+    ModeStep finest_map = full_map;
+    for (int level = 0; level < level_count; ++level) {
+      const auto l = static_cast<std::size_t>(level);
+      const int steps = level_substeps[l];
+      const ModeStep map = steps == 1
+                               ? full_map
+                               : ComputeModeStep(mode.frequency_hz, mode.decay_s, mode.mass_kg,
+                                                 step_s / static_cast<double>(steps));
+      level_maps[l].Set(k, map);
+      level_compliance[l] += map.b1;
+      finest_map = map;
+    }
+    sub.Set(k, finest_map);
     mass[k] = mode.mass_kg;
     omega0_sq[k] = omega_d * omega_d + 1.0 / (mode.decay_s * mode.decay_s);
     gain[k] = mode.gain;
-    sub_compliance += sub[k].b1;
-    full_compliance += full[k].b1;
+    full_compliance += full_map.b1;
     ++count;
   }
+  padded_count = (count + 1) / 2 * 2;
+  sub_compliance = level_compliance[static_cast<std::size_t>(level_count - 1)];
   Reset();
+}
+
+void ModalState::Refresh() {
+  double q_sum = 0.0, v_sum = 0.0, pickup = 0.0, free_next = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    q_sum += q[k];
+    v_sum += v[k];
+    pickup += gain[k] * v[k];
+    free_next += (full.a11[k] - 1.0) * q[k] + full.a12[k] * v[k];
+  }
+  contact_displacement = q_sum;
+  contact_velocity = v_sum;
+  pickup_velocity = pickup;
+  free_full_motion = free_next;
 }
 
 }  // namespace sas::synth

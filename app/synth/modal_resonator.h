@@ -30,48 +30,77 @@ struct ModeStep {
 // Computes the exact step for frequency_hz (damped), decay_s (1/e), mass_kg and step h_s.
 ModeStep ComputeModeStep(double frequency_hz, double decay_s, double mass_kg, double step_s);
 
+// The maps of all modes for one step length, one array per coefficient (structure of arrays), so
+// the per-sample pass runs two modes per SIMD register. Slots past the mode count are zero.
+struct ModeMaps {
+  alignas(16) std::array<double, kMaxModes> a11{};
+  alignas(16) std::array<double, kMaxModes> a12{};
+  alignas(16) std::array<double, kMaxModes> a21{};
+  alignas(16) std::array<double, kMaxModes> a22{};
+  alignas(16) std::array<double, kMaxModes> b1{};
+  alignas(16) std::array<double, kMaxModes> b2{};
+  void Set(std::size_t k, const ModeStep& m) {
+    a11[k] = m.a11;
+    a12[k] = m.a12;
+    a21[k] = m.a21;
+    a22[k] = m.a22;
+    b1[k] = m.b1;
+    b2[k] = m.b2;
+  }
+};
+
+// Sub-step levels a ModalState keeps maps for: the contact may run 1, 2, 4, ... sub-steps per
+// sample (adaptive oversampling, contact_kernel.h) up to the material's count.
+inline constexpr int kMaxSubstepLevels = 9;
+
 // The computed modes, packed (only the active ones), with their exact maps for a full sample and
-// for one contact sub-step. Plain data so the per-sample kernel can keep it in registers/cache.
+// for one contact sub-step at each level. Plain data so the per-sample kernel can keep it in
+// cache. The sums the kernel needs every sample (contact displacement and velocity, pickup
+// velocity, the free motion over the next full sample) are accumulated in the same pass that
+// advances the modes (AdvanceModes), so a sample costs one or two passes over the modes.
 struct ModalState {
   int count = 0;
-  std::array<double, kMaxModes> q{};  // displacement at the contact point, m
-  std::array<double, kMaxModes> v{};  // velocity, m/s
-  std::array<ModeStep, kMaxModes> full{};
-  std::array<ModeStep, kMaxModes> sub{};
+  int padded_count = 0;                           // count rounded up to even (SIMD pairs)
+  alignas(16) std::array<double, kMaxModes> q{};  // displacement at the contact point, m
+  alignas(16) std::array<double, kMaxModes> v{};  // velocity, m/s
+  ModeMaps full{};
+  ModeMaps sub{};  // the finest level: `substeps` sub-steps per sample
   std::array<double, kMaxModes> mass{};
   std::array<double, kMaxModes> omega0_sq{};
-  std::array<double, kMaxModes> gain{};
-  double sub_compliance = 0.0;   // Σ b1 over the sub-step: Δ(contact displacement) per newton
+  alignas(16) std::array<double, kMaxModes> gain{};
+  double sub_compliance = 0.0;   // Σ b1 over the finest sub-step: Δ(contact displacement) per N
   double full_compliance = 0.0;  // Σ b1 over a full sample
+  // Levels, coarsest first: level_substeps[0] = 1 when adaptive (its map is `full`), and the last
+  // level is always `substeps` (its map is `sub`).
+  int level_count = 1;
+  std::array<int, kMaxSubstepLevels> level_substeps{1};
+  std::array<double, kMaxSubstepLevels> level_compliance{};
+  std::array<ModeMaps, kMaxSubstepLevels> level_maps{};
+  // Cached sums of the current state (kept by AdvanceModes, Reset and Refresh).
+  double contact_displacement = 0.0;  // Σ q
+  double contact_velocity = 0.0;      // Σ v
+  double pickup_velocity = 0.0;       // Σ g v
+  double free_full_motion = 0.0;      // Σ Δq over one full sample with no force
 
   // Fills the packed arrays from `params` (fs in Hz, `substeps` contact sub-steps per sample)
   // and zeroes the state. `keep_inaudible` computes the modes at or above 0.45 fs and those with
-  // negligible gain too (tests comparing against the skip).
+  // negligible gain too (tests comparing against the skip). `adaptive` keeps maps for 1, 2, 4, ...
+  // sub-steps below `substeps` as well.
   void Prepare(const ResonatorParams& params, double sample_rate_hz, int substeps,
-               bool keep_inaudible = false);
+               bool keep_inaudible = false, bool adaptive = false);
   void Reset() {
     q.fill(0.0);
     v.fill(0.0);
+    contact_displacement = contact_velocity = pickup_velocity = free_full_motion = 0.0;
   }
+  // Recomputes the cached sums after q or v were written directly.
+  void Refresh();
 
-  double ContactDisplacement() const {
-    double sum = 0.0;
-    for (int i = 0; i < count; ++i) sum += q[static_cast<std::size_t>(i)];
-    return sum;
-  }
+  double ContactDisplacement() const { return contact_displacement; }
   double ContactVelocity() const {  // Σ q', the surface's velocity at the contact point
-    double sum = 0.0;
-    for (int i = 0; i < count; ++i) sum += v[static_cast<std::size_t>(i)];
-    return sum;
+    return contact_velocity;
   }
-  double PickupVelocity() const {
-    double sum = 0.0;
-    for (int i = 0; i < count; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      sum += gain[k] * v[k];
-    }
-    return sum;
-  }
+  double PickupVelocity() const { return pickup_velocity; }
   double Energy() const {
     double sum = 0.0;
     for (int i = 0; i < count; ++i) {
@@ -91,32 +120,66 @@ struct ModalState {
   }
 };
 
-// Advances every mode by one step of map `steps` under constant contact force `force_n`.
-// Returns the change of the contact displacement Σ Δq.
-inline double AdvanceModes(ModalState& s, const std::array<ModeStep, kMaxModes>& steps,
-                           double force_n) {
-  double dq_sum = 0.0;
-  for (int i = 0; i < s.count; ++i) {
+namespace detail {
+// Two doubles per register (SSE2 / NEON through the compiler's vector extension). Loads and
+// stores go through memcpy: no aliasing assumptions, aligned moves after optimisation.
+using Double2 = double __attribute__((vector_size(16)));
+inline Double2 Load2(const double* p) {
+  Double2 r;
+  __builtin_memcpy(&r, p, sizeof r);
+  return r;
+}
+inline void Store2(double* p, Double2 x) {
+  __builtin_memcpy(p, &x, sizeof x);
+}
+inline double Sum2(Double2 x) {
+  return x[0] + x[1];
+}
+}  // namespace detail
+
+// Advances every mode by one step of map `steps` under constant contact force `force_n`, and
+// refreshes the cached sums in the same pass. Returns the change of the contact displacement.
+inline double AdvanceModes(ModalState& s, const ModeMaps& steps, double force_n) {
+  using detail::Double2;
+  using detail::Load2;
+  Double2 q_sum{0.0, 0.0}, v_sum{0.0, 0.0}, pickup{0.0, 0.0}, free_next{0.0, 0.0};
+  const Double2 force{force_n, force_n};
+  const Double2 one{1.0, 1.0};
+  for (int i = 0; i < s.padded_count; i += 2) {
     const auto k = static_cast<std::size_t>(i);
-    const ModeStep& m = steps[k];
-    const double q0 = s.q[k], v0 = s.v[k];
-    const double q1 = m.a11 * q0 + m.a12 * v0 + m.b1 * force_n;
-    s.v[k] = m.a21 * q0 + m.a22 * v0 + m.b2 * force_n;
-    s.q[k] = q1;
-    dq_sum += q1 - q0;
+    const Double2 q0 = Load2(&s.q[k]), v0 = Load2(&s.v[k]);
+    const Double2 q1 =
+        Load2(&steps.a11[k]) * q0 + Load2(&steps.a12[k]) * v0 + Load2(&steps.b1[k]) * force;
+    const Double2 v1 =
+        Load2(&steps.a21[k]) * q0 + Load2(&steps.a22[k]) * v0 + Load2(&steps.b2[k]) * force;
+    detail::Store2(&s.q[k], q1);
+    detail::Store2(&s.v[k], v1);
+    q_sum += q1;
+    v_sum += v1;
+    pickup += Load2(&s.gain[k]) * v1;
+    free_next += (Load2(&s.full.a11[k]) - one) * q1 + Load2(&s.full.a12[k]) * v1;
   }
-  return dq_sum;
+  const double q_total = detail::Sum2(q_sum);
+  const double change = q_total - s.contact_displacement;
+  s.contact_displacement = q_total;
+  s.contact_velocity = detail::Sum2(v_sum);
+  s.pickup_velocity = detail::Sum2(pickup);
+  s.free_full_motion = detail::Sum2(free_next);
+  return change;
 }
 
 // Change of the contact displacement over one step of `steps` if no force acted.
-inline double FreeContactMotion(const ModalState& s, const std::array<ModeStep, kMaxModes>& steps) {
-  double dq_sum = 0.0;
-  for (int i = 0; i < s.count; ++i) {
+inline double FreeContactMotion(const ModalState& s, const ModeMaps& steps) {
+  if (&steps == &s.full) return s.free_full_motion;
+  using detail::Double2;
+  using detail::Load2;
+  Double2 sum{0.0, 0.0};
+  const Double2 one{1.0, 1.0};
+  for (int i = 0; i < s.padded_count; i += 2) {
     const auto k = static_cast<std::size_t>(i);
-    const ModeStep& m = steps[k];
-    dq_sum += (m.a11 - 1.0) * s.q[k] + m.a12 * s.v[k];
+    sum += (Load2(&steps.a11[k]) - one) * Load2(&s.q[k]) + Load2(&steps.a12[k]) * Load2(&s.v[k]);
   }
-  return dq_sum;
+  return detail::Sum2(sum);
 }
 
 }  // namespace sas::synth

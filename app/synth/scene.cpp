@@ -124,11 +124,14 @@ struct Scene::Impl {
     friction_skipped = false;
   }
 
-  // Pen up, probe parked, resonator and output filters below kIdleSilence.
+  // Pen up, probe parked, resonator and output filters below half of kIdleSilence: the haptic
+  // band-pass (a 16th-order low-pass) can ring its state up past the bound of its input for a
+  // while, so the margin keeps every zeroed output sample below kIdleSilence.
   bool Silent() const {
     if (probe.active) return false;
-    return modes.PickupAmplitudeBound() * output_gain < kIdleSilence &&
-           output.FilterActivity() < kIdleSilence;
+    constexpr double kThreshold = 0.5 * kIdleSilence;
+    return modes.PickupAmplitudeBound() * output_gain < kThreshold &&
+           output.FilterActivity() < kThreshold;
   }
 
   // Friction can be left out this sample (SceneSkips::relaxed_friction): not sliding, the bristle
@@ -312,7 +315,11 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
   s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
-  s.modes.Prepare(m.resonator, s.fs, s.config.substeps, !s.skips.inaudible_modes);
+  // Automatic oversampling adapts per compression (contact.h, ContactSubstepsForSpeed).
+  const bool adaptive = m.impact.enabled && m.impact.oversample <= 0;
+  s.modes.Prepare(m.resonator, s.fs, s.config.substeps, !s.skips.inaudible_modes, adaptive);
+  s.config.adaptive = adaptive && s.modes.level_count > 1;
+  s.config.SetLevels(m.impact, s.modes, s.fs);
   s.reader.Prepare(surface);
   s.output.Prepare(output, s.fs);
   s.low_vibration.store(output.low_vibration, std::memory_order_relaxed);

@@ -634,8 +634,7 @@ int main(int argc, char** argv) {
     std::printf("impact: %s done\n", SchemeName(scheme).c_str());
     std::fflush(stdout);
   }
-  synth::ContactScheme reference =
-      schemes.empty() ? synth::kDefaultContactScheme : schemes.front();
+  synth::ContactScheme reference = schemes.empty() ? synth::kDefaultContactScheme : schemes.front();
   for (auto s : schemes)
     if (log_error_at_64[s] < log_error_at_64[reference]) reference = s;
   std::printf("reference for friction and scene: %s x64 (smallest impact error at x64)\n",
