@@ -59,9 +59,10 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
   if (x0 > 0.0 && x1 > 0.0 && std::fabs(d) <= 1e-4 * std::min(x0, x1)) {
     // Midpoint expansion: the plain difference quotient cancels for tiny d.
     const double mid = x0 + 0.5 * d;
-    const double d1 = m.k * m.PowAlpha(mid);  // first derivative of V: k x^α
-    const double d2 = a * d1 / mid;           // second
-    const double d3 = (a - 1.0) * d2 / mid;   // third
+    const double inv_mid = 1.0 / mid;
+    const double d1 = m.k * m.PowAlpha(mid);     // first derivative of V: k x^α
+    const double d2 = a * d1 * inv_mid;          // second
+    const double d3 = (a - 1.0) * d2 * inv_mid;  // third
     s.g = d1 + d3 * d * d / 24.0;
     s.dg = 0.5 * d2 + d3 * d / 12.0;  // derivative of the expansion in d (x0 fixed)
     return s;
@@ -82,13 +83,14 @@ struct NormalEval {
   double f = 0.0;
   double df = 0.0;
 };
-NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double h) {
+// `mu_over_h` = μ / h.
+NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double mu_over_h) {
   const Secant s = PotentialSecant(m, x0, v0, d);
-  const double p = 1.0 + m.mu * d / h;
+  const double p = 1.0 + mu_over_h * d;
   NormalEval e;
   if (p <= 0.0) return e;  // separating faster than 1/μ: Hunt–Crossley would pull; clamp to 0
   e.f = s.g * p;
-  e.df = s.dg * p + s.g * m.mu / h;
+  e.df = s.dg * p + s.g * mu_over_h;
   return e;
 }
 
@@ -151,7 +153,7 @@ double SolveMonotone(const ForceFn& force, double c, double compliance, double d
 class DiscreteGradientSolve {
  public:
   DiscreteGradientSolve(const ImpactModel& m, double x0, double compliance, double h)
-      : m_(m), x0_(x0), compliance_(compliance), h_(h), v0_(m.Potential(x0)) {
+      : m_(m), x0_(x0), compliance_(compliance), mu_over_h_(m.mu / h), v0_(m.Potential(x0)) {
     if (x0 > 0.0) {
       f0_ = m.Force(x0);
       slope0_ = 0.5 * m.alpha * f0_ / x0 + f0_ * m.mu / h;
@@ -172,8 +174,8 @@ class DiscreteGradientSolve {
     }
     const double scale = std::max(std::fabs(x0_), std::fabs(c)) + 1e-300;
     double slope = 1.0;
-    d = SolveMonotone([&](double dd) { return NormalForce(m_, x0_, v0_, dd, h_); }, c, compliance_,
-                      d, scale, force, &slope);
+    d = SolveMonotone([&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_); }, c,
+                      compliance_, d, scale, force, &slope);
     // R(d) = d - c + C F(d) = 0: dd/dc = 1 / R', dF/dc = F' / R' = (R' - 1) / (C R').
     if (slope > 0.0) *dforce_dc = (slope - 1.0) / (compliance_ * slope);
     if (std::isfinite(d) && slope > 0.0) {
@@ -187,7 +189,7 @@ class DiscreteGradientSolve {
 
  private:
   const ImpactModel& m_;
-  double x0_, compliance_, h_, v0_;
+  double x0_, compliance_, mu_over_h_, v0_;
   double f0_ = 0.0, slope0_ = 0.0;
   bool has_last_ = false;
   double last_c_ = 0.0, last_d_ = 0.0, last_slope_ = 1.0;
@@ -321,7 +323,8 @@ NormalStep QuadratisedNormal(const ImpactModel& m, const ContactStepInput& in, d
 // bracketed by expansion and found by Illinois regula falsi (superlinear, never leaves the
 // bracket). Returns the root; the caller re-evaluates there if it was not the last point tried.
 template <class Residual>
-double SolveSlip(const Residual& residual, double a, double r_a, double slope0) {
+double SolveSlip(const Residual& residual, double a, double r_a, double slope0,
+                 double* slope_out = nullptr) {
   if (r_a == 0.0) return a;
   {
     double u_prev = a, r_prev = r_a;
@@ -329,6 +332,8 @@ double SolveSlip(const Residual& residual, double a, double r_a, double slope0) 
     for (int i = 0; i < 8; ++i) {
       const double r = residual(u);
       if (r == 0.0) return u;
+      const double secant = (r - r_prev) / (u - u_prev);
+      if (slope_out != nullptr && std::isfinite(secant) && secant > 0.0) *slope_out = secant;
       const double step = r * (u - u_prev) / (r - r_prev);
       if (!std::isfinite(step)) break;
       // Converged: the next step is at the rounding level of u, so u itself (the last point
@@ -573,10 +578,14 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
             in.impact_on ? std::max(force_a + dforce_dc * in.coupling * (f - f_a), 0.0) : 0.0;
         return uu - in.free_du - in.coupling * (force - f);
       };
-      // Elastic (sticking) slope of the residual; the normal coupling only lowers it.
-      const double slope0 =
-          1.0 + in.coupling * (0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) / in.h);
-      u = SolveSlip(search, a, r_a, slope0);
+      // First step: the residual's slope found by the previous step (the state changes little
+      // from one step to the next), else the elastic (sticking) slope.
+      const double slope0 = in.slip_slope_guess > 0.0
+                                ? in.slip_slope_guess
+                                : 1.0 + in.coupling * (0.5 * friction.sigma0 +
+                                                       (friction.sigma1 + friction.sigma2) / in.h);
+      out.slip_slope = slope0;
+      u = SolveSlip(search, a, r_a, slope0, &out.slip_slope);
     }
     if (u == last_u) {
       // The bristle and f(u) are those of the last point tried: only F is solved exactly for f.

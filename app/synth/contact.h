@@ -156,11 +156,12 @@ struct ContactStepInput {
   double z0 = 0.0;
   double friction_normal_n = 0.0;  // f_N seen by the friction (≥ 0)
   double noise_n = 0.0;            // σ3 w for this step
-  double normal_guess_n = 0.0;     // normal force of the previous step (IEQ mid-step predictor,
-                                   // friction's predicted slip speed)
-  double xdot0 = 0.0;              // compression rate at the start (explicit, trapezoid schemes)
-  double aux0 = 0.0;               // the scheme's contact state: energy E (explicit, trapezoid)
-                                   // or ψ (energy-quadratised); unused by the discrete gradient
+  double slip_slope_guess = 0.0;  // slope of the slip residual found by the previous step (0: none)
+  double normal_guess_n = 0.0;    // normal force of the previous step (IEQ mid-step predictor,
+                                  // friction's predicted slip speed)
+  double xdot0 = 0.0;             // compression rate at the start (explicit, trapezoid schemes)
+  double aux0 = 0.0;              // the scheme's contact state: energy E (explicit, trapezoid)
+                                  // or ψ (energy-quadratised); unused by the discrete gradient
   bool impact_on = false;
   bool friction_on = false;
 };
@@ -172,6 +173,7 @@ struct ContactStepOutput {
   double du = 0.0;
   double z1 = 0.0;
   double aux1 = 0.0;              // the scheme's contact state after the step (see aux0)
+  double slip_slope = 0.0;        // slope of the slip residual at the root (next step's guess)
   double contact_energy_j = 0.0;  // energy the scheme holds in the contact after the step: V(x1)
                                   // (discrete gradient), E (explicit, trapezoid) or ψ²/2 (IEQ)
 };

@@ -68,6 +68,7 @@ struct ProbeDynamics {
   double friction_n = 0.0;        // last f (on the resonator)
   double compression_m = 0.0;     // x at the end of the last step
   double contact_aux = 0.0;       // the scheme's contact state (ContactStepInput::aux0)
+  double slip_slope = 0.0;        // the coupled solve's last slip-residual slope (next start)
   double contact_energy_j = 0.0;  // energy the scheme holds in the contact (V(x), E or ψ²/2)
   int substeps_used = 0;
   bool touched = false;  // a contact force acted during the last sample
@@ -196,6 +197,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     in.z0 = probe.bristle_m;
     in.noise_n = drive.noise_n;
     in.normal_guess_n = probe.normal_n;
+    in.slip_slope_guess = probe.slip_slope;
     in.aux0 = probe.contact_aux;
     // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
     // modes).
@@ -239,6 +241,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.normal_n = out.normal_n;
     probe.friction_n = out.friction_n;
     probe.contact_aux = out.aux1;
+    probe.slip_slope = out.slip_slope;
     probe.contact_energy_j = out.contact_energy_j;
     if (out.normal_n != 0.0 || out.friction_n != 0.0) probe.touched = true;
     surface = surface_next;
