@@ -20,15 +20,10 @@ constexpr int kSets = 300;
 constexpr int kSets = 2000;
 #endif
 
-// Sets on which the discrete-gradient contact (the only scheme implemented when this test was
-// written) creates energy: impact and friction strongly coupled through light modes (rub style,
-// normal forces of tens of newtons), where the block Gauss–Seidel between the normal and the
-// friction solve in SolveContactStep (synth/contact.cpp) ends with a normal force and a friction
-// force from different iterations, so neither energy identity holds exactly. Raising its
-// iteration cap from 24 to 400 reduces but does not remove the rise (set 1397: 0.41 -> 0.014 of
-// the energy scale). Found by this test; to be fixed in the contact solver (issue 4, schemes).
-// They are still run and reported; any other set creating energy fails the test.
-constexpr std::array<int, 2> kKnownEnergyFailures = {46, 1397};
+// Sets 46 and 1397 used to create energy (impact and friction strongly coupled through light
+// modes): the block Gauss–Seidel between the normal and the friction solve ended with forces from
+// different iterations. The coupled step is now one equation in the slip (synth/contact.cpp) and
+// every set is held to the energy tolerance.
 
 }  // namespace
 
@@ -42,16 +37,6 @@ TEST_CASE(
     const test::StressSet set = test::MakeStressSet(test::kStressSeed, index);
     const test::StressOutcome outcome = test::RunStressSet(set);
     peak = std::max(peak, outcome.peak);
-    const bool known = std::find(kKnownEnergyFailures.begin(), kKnownEnergyFailures.end(), index) !=
-                       kKnownEnergyFailures.end();
-    if (known) {
-      // Everything but the energy is still checked.
-      CHECK(outcome.ok(1e300));
-      WARN("known energy failure, set "
-           << index << ": per-sample rise " << outcome.worst_energy_rise << " of the energy scale"
-           << (outcome.ok() ? " -- now passes: remove it from the list" : ""));
-      continue;
-    }
     worst_rise = std::max(worst_rise, outcome.worst_energy_rise);
     if (!outcome.ok()) {
       ++failures;
@@ -69,7 +54,7 @@ TEST_CASE(
       if (failures >= 10) break;  // enough to diagnose
     }
   }
-  WARN(kSets << " sets: largest per-sample energy rise / energy scale (known failures aside) "
+  WARN(kSets << " sets: largest per-sample energy rise / energy scale "
              << worst_rise << ", output peak " << peak);
   CHECK(failures == 0);
   CHECK(peak > 0.5);  // the sets do drive the output hard (exaggerated gains)
