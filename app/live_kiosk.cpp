@@ -209,7 +209,8 @@ class StaffPanel {
 
 }  // namespace
 
-int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
+int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
+             const KioskBackends& backends) {
   KioskArgs options;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--config" && i + 1 < args.size()) {
@@ -317,7 +318,12 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   switches_config.mcp2221.active_low = config.switches_active_low;
   switches_config.mcp2221.debounce_ms = config.switches_debounce_ms;
   switches_config.mcp2221.poll_interval_ms = config.mcp2221_poll_ms;
-  auto switches = platform::OpenSwitchInputs(switches_config, board);
+  std::unique_ptr<platform::GpioEventSource> gpio_events;
+  if (backends.gpio_events &&
+      (switches_config.backend == "gpio" || switches_config.backend == "auto")) {
+    gpio_events = backends.gpio_events(switches_config.gpio);
+  }
+  auto switches = platform::OpenSwitchInputs(switches_config, board, std::move(gpio_events));
 
   platform::PenConfig pen_config;
   pen_config.screen_width_px = width;

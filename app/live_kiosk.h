@@ -6,12 +6,28 @@
 //   sketch-a-scratch kiosk [--config FILE]   (FILE default /etc/sketch-a-scratch/kiosk.toml)
 
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "platform/gpio/gpio_switches.h"
+
 namespace sas::app {
 
+// The one seam for the end-to-end test (tests/e2e/kiosk_gpio_e2e_app.cpp): the product passes
+// nothing and every backend is real. `gpio_events`, when set, builds the GPIO token switches'
+// event source from the configured chip and lines instead of libgpiod (Debian 12's kernel has no
+// gpio-sim); the backend choice, the GPIO switch thread, debounce, active-low and the token rule
+// stay the real ones. It is called only when [switches] backend is "gpio" or "auto", must not
+// throw, and may return null (then libgpiod is used).
+struct KioskBackends {
+  std::function<std::unique_ptr<platform::GpioEventSource>(const platform::GpioSwitchConfig&)>
+      gpio_events;
+};
+
 // Runs until SIGTERM/SIGINT (systemd's stop). Returns the exit code; 1 when no window opens.
-int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err);
+int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
+             const KioskBackends& backends = {});
 
 }  // namespace sas::app

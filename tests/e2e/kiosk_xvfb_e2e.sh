@@ -1,18 +1,25 @@
 #!/bin/bash
-# End-to-end check of the real kiosk (issue 7, acceptance 1-3): `sketch-a-scratch --kiosk` on
-# Xvfb (no window manager), its audio through ALSA's file plugin into FIFOs paced in real time by
-# kiosk_e2e_tool (ALSA_CONFIG_PATH points at a config written here), driven by xdotool, checked
-# on ImageMagick screenshots, the played stream, and the files the app could have written.
-# Checks, in order:
-#   full-screen window; token key 2 shows broken glass; a drag with the button held shows the
-#   dent at the drag point and the picture elsewhere; the played stream is audible during the drag
-#   and silent at its end; token key 1 then shows bubble wrap (pixel check against its texture
-#   file); the record key, a
-#   countdown, then espeak-ng speech fed as the capture input: the screen shows a grey sound
-#   image with silent and sounding rows; visitor key combinations leave it running; the staff
-#   chord opens the panel (and closes it); after the idle timeout the voice is wiped and no file
-#   the app could write holds any stretch of the speech samples.
-# usage: kiosk_xvfb_e2e.sh <sketch-a-scratch> <kiosk_e2e_tool> <textures dir>
+# End-to-end check of the live kiosk (issue 7, acceptance 1-3) on Xvfb (no window manager):
+# kiosk_gpio_e2e_app runs the code of `sketch-a-scratch --kiosk` (sas::app::RunKiosk) with the
+# GPIO token switches' event source reading "line <offset> falling|rising" from a FIFO this script
+# writes, instead of libgpiod (Debian 12's kernel has no gpio-sim); the GPIO switch thread,
+# debounce, active-low, line mapping and token rule are the real ones. Its audio goes through
+# ALSA's file plugin into FIFOs paced in real time by kiosk_e2e_tool (ALSA_CONFIG_PATH points at a
+# config written here); it is driven by xdotool and checked on ImageMagick screenshots, the played
+# stream, and the files the app could have written. Checks, in order:
+#   full-screen window, switches on GPIO; a 0 ms glitch on token 1's line changes nothing
+#   (debounce) while a bouncing falling edge on token 2's line shows broken glass (log line and
+#   pixel check against its texture file); a drag with the button held shows the dent at the drag
+#   point and the picture elsewhere; the played stream is audible during the drag and silent at
+#   its end; a falling edge on token 1's line then shows bubble wrap (the token placed last wins)
+#   and its rising edge (token lifted) falls back to broken glass (log lines and pixel checks);
+#   key 4 toggles token 4 next to the GPIO switches; lifting token 2 shows the default texture;
+#   the record button's line pressed, a countdown, then espeak-ng speech fed as the capture
+#   input: the screen shows a grey sound image with silent and sounding rows; visitor key
+#   combinations leave it running; the staff chord opens the panel (and closes it); after the
+#   idle timeout the voice is wiped and no file the app could write holds any stretch of the
+#   speech samples.
+# usage: kiosk_xvfb_e2e.sh <kiosk_gpio_e2e_app> <kiosk_e2e_tool> <textures dir>
 set -u
 app=$(readlink -f "$1")
 tool=$(readlink -f "$2")
@@ -36,13 +43,23 @@ cleanup() {
 }
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; echo "--- app log"; grep -v 'jack server\|JackShm\|Cannot connect' "$work/app.log"; exit 1; }
-wait_log() {  # wait_log <pattern> <tenths of a second>
-  for _ in $(seq "$2"); do
-    grep -q "$1" "$work/app.log" && return 0
+wait_count() {  # wait_count <pattern> <count> <tenths of a second>: the log has count such lines
+  for _ in $(seq "$3"); do
+    [ "$(grep -c "$1" "$work/app.log")" -ge "$2" ] && return 0
     [ -n "$app_pid" ] && ! kill -0 "$app_pid" 2>/dev/null && return 1
     sleep 0.1
   done
   return 1
+}
+wait_log() { wait_count "$1" 1 "$2"; }  # wait_log <pattern> <tenths of a second>
+# The fake GPIO chip: one edge per argument, all in one write (so one read, microseconds apart).
+gpio() { printf '%s\n' "$@" >&4 || fail "cannot write the GPIO FIFO"; }
+matches() {  # matches <shot> <texture>: the screenshot shows that texture's picture, not another
+  local others=()
+  for t in bubble_wrap wooden_board broken_glass cracked_ground; do
+    [ "$t" = "$2" ] || others+=("$textures/$t/picture.png")
+  done
+  "$tool" matches "$work/$1.png" "$textures/$2/picture.png" "${others[@]}"
 }
 shot() { import -window root "$work/$1.png" || fail "screenshot $1 failed"; }
 
@@ -51,7 +68,7 @@ mkdir -p "$work/state" "$work/home" "$work/cwd"
 espeak-ng -w "$work/speech.wav" "Hello museum, this is my voice, scratch it" 2>/dev/null ||
   fail "espeak-ng could not speak"
 "$tool" speech "$work/speech.wav" "$work/speech.f32" || fail "speech conversion"
-mkfifo "$work/out.fifo" "$work/in.fifo"
+mkfifo "$work/out.fifo" "$work/in.fifo" "$work/gpio.fifo"
 "$tool" pace "$work/out.fifo" "$work/out.raw" "$work/in.fifo" "$work/speech.f32" "$work/speak" &
 pacer_pid=$!
 cat >"$work/asound.conf" <<EOF
@@ -64,7 +81,9 @@ cat >"$work/kiosk.toml" <<EOF
 [session]
 idle_timeout_s = 8.0
 [switches]
-backend = "keyboard"
+backend = "gpio"
+# Not the default offsets, so the edges only arrive if the configured lines are mapped.
+gpio_lines = ["5", "6", "13", "19", "26"]
 EOF
 
 Xvfb -displayfd 3 -screen 0 "${width}x${height}x24" -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
@@ -76,10 +95,14 @@ unset WAYLAND_DISPLAY SDL_VIDEODRIVER XDG_STATE_HOME STATE_DIRECTORY
 
 touch "$work/start.stamp"
 (cd "$work/cwd" && HOME="$work/home" ALSA_CONFIG_PATH="$work/asound.conf" \
-  exec "$app" --kiosk --config "$work/kiosk.toml" --state-dir "$work/state") >"$work/app.log" 2>&1 &
+  exec "$app" --gpio-fifo "$work/gpio.fifo" --config "$work/kiosk.toml" \
+  --state-dir "$work/state") >"$work/app.log" 2>&1 &
 app_pid=$!
+# Held open read-write: a write never blocks, even when the kiosk is gone.
+exec 4<>"$work/gpio.fifo"
 wait_log '^kiosk ready' 300 || fail "the kiosk never reported ready"
 grep '^kiosk ready' "$work/app.log"
+grep -q '^kiosk ready.*switches gpio$' "$work/app.log" || fail "the token switches are not on GPIO"
 window_id=$(timeout 30 xdotool search --sync --onlyvisible --name '^Sketch-a-Scratch$' | head -1)
 [ -n "$window_id" ] || fail "no window appeared"
 eval "$(xdotool getwindowgeometry --shell "$window_id")"
@@ -95,10 +118,15 @@ xdotool mousemove 100 100 click 1
 wait_log 'visit started' 30 || fail "a touch did not leave the attract screen"
 sleep 0.8  # the attract veil fades out with the picture's next frame
 
-# A token on switch 2 (keyboard stand-in): broken glass, a loud texture, replaces the default.
-xdotool key 2
-wait_log 'showing broken_glass' 30 || fail "token key 2 did not switch the texture"
+# A glitch on token 1's line (low and back within the debounce time) and a token placed on
+# switch 2 whose contact bounces: broken glass, a loud texture, replaces the default.
+gpio "line 5 falling" "line 5 rising" "line 6 falling" "line 6 rising" "line 6 falling"
+wait_log 'showing broken_glass' 30 || fail "a falling edge on token 2's line did not switch the texture"
 sleep 1.0  # cross-fade 0.45 s
+grep -q 'showing bubble_wrap' "$work/app.log" && fail "a glitch shorter than the debounce time placed token 1"
+shot glass
+matches glass broken_glass || fail "the screen does not show broken glass"
+echo "ok: GPIO token 2 shows broken glass (pixel check), the glitch on token 1 was debounced away"
 
 # Drag with the button held across it.
 x0=400; y0=360; x1=760; y1=420; steps=40
@@ -122,20 +150,35 @@ sleep 3.0
 echo "ok: audible during the drag, silent after the release"
 
 # A second token, on switch 1: bubble wrap (the token placed last wins).
-xdotool key 1
-wait_log 'showing bubble_wrap' 30 || fail "token key 1 did not switch the texture"
+gpio "line 5 falling"
+wait_log 'showing bubble_wrap' 30 || fail "a falling edge on token 1's line did not switch the texture"
 sleep 1.0
 shot token
-"$tool" matches "$work/token.png" "$textures/bubble_wrap/picture.png" \
-  "$textures/wooden_board/picture.png" "$textures/broken_glass/picture.png" \
-  "$textures/cracked_ground/picture.png" || fail "the screen does not show bubble wrap"
-echo "ok: token switch shows bubble wrap (pixel check against its texture file)"
+matches token bubble_wrap || fail "the screen does not show bubble wrap"
+echo "ok: GPIO token 1 placed last shows bubble wrap (pixel check against its texture file)"
+# Lifted: back to the token still on its switch.
+gpio "line 5 rising"
+wait_count 'showing broken_glass' 2 30 || fail "lifting token 1 did not fall back to token 2"
+sleep 1.0
+shot lifted
+matches lifted broken_glass || fail "the screen does not show broken glass after the lift"
+echo "ok: lifting GPIO token 1 falls back to token 2, broken glass (pixel check)"
+# The keys still work next to the GPIO switches (staff, tests): key 4 places and lifts token 4.
+xdotool key 4
+wait_log 'showing cracked_ground' 30 || fail "token key 4 did not switch the texture"
+xdotool key 4
+wait_count 'showing broken_glass' 3 30 || fail "token key 4 lifted did not fall back to token 2"
+defaults=$(grep -c 'showing wooden_board' "$work/app.log")
+gpio "line 6 rising"
+wait_count 'showing wooden_board' $((defaults + 1)) 30 || fail "with no token left the default texture is not shown"
+echo "ok: key 4 toggles token 4 next to GPIO, no token left shows the default texture"
 
-# The voice: record key, countdown, then the speech arrives at the microphone.
-xdotool keydown r
+# The voice: the record button's line, countdown, then the speech arrives at the microphone.
+gpio "line 26 falling"
 sleep 0.1
-xdotool keyup r
-wait_log 'recording started' 60 || fail "recording never started"
+gpio "line 26 rising"
+wait_log 'recording started' 60 || fail "the record button's GPIO line did not start a recording"
+echo "ok: the record button's GPIO line starts the recording"
 touch "$work/speak"
 wait_log 'showing the voice' 90 || fail "the recording did not become the surface"
 sleep 1.0
