@@ -156,6 +156,7 @@ struct ContactStepInput {
   double z0 = 0.0;
   double friction_normal_n = 0.0;  // f_N seen by the friction (≥ 0)
   double noise_n = 0.0;            // σ3 w for this step
+  double friction_guess_n = 0.0;   // friction force of the previous step (start of the solve)
   double slip_slope_guess = 0.0;  // slope of the slip residual found by the previous step (0: none)
   double normal_guess_n = 0.0;    // normal force of the previous step (IEQ mid-step predictor,
                                   // friction's predicted slip speed)

@@ -198,6 +198,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     in.noise_n = drive.noise_n;
     in.normal_guess_n = probe.normal_n;
     in.slip_slope_guess = probe.slip_slope;
+    in.friction_guess_n = probe.friction_n;
     in.aux0 = probe.contact_aux;
     // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
     // modes).
