@@ -20,8 +20,8 @@
 // strokes' levels (in dB, each stroke counting once) to the common target. Matching every stroke's
 // level across the textures in the least-squares sense comes down to exactly that per texture.
 // It cannot match every stroke within 1 dB: the textures' levels do not grow alike with speed
-// and pressure (glass, whose modes lie above 3 kHz, is 17 dB louder on a fast light scrape than on
-// a slow firm one; wood 6 dB), so after calibration the same stroke still differs by up to ~10 dB
+// and pressure (glass, whose modes lie above 3 kHz, spans 17 dB from its slow firm rub to its fast
+// light scrape; wood 6 dB), so after calibration the same stroke still differs by up to ~10 dB
 // between two textures (sound and vibration; measured by tests/kiosk/test_texture_levels.cpp,
 // figures in README "Textures, loudness matching and spoken cues"), while the mean over the
 // strokes — what a visitor's few strokes on a texture add up to — agrees within 0.05 dB.
@@ -33,7 +33,7 @@
 // The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
 // transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
 // content; through the render path's smooth true height map that took +71 dB, through the
-// engine's picture-derived field (rougher, more low-frequency contact) it takes ~+50 dB, 15 dB
+// engine's picture-derived field (rougher, more low-frequency contact) it takes ~+49 dB, 20 dB
 // more than wood. The cap, 10 dB above that, only stops a broken material from getting an absurd
 // gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks anyway);
 // a capped texture vibrates weaker than the others and the matching test says so.
@@ -72,10 +72,10 @@ struct LevelMeasurement {
   std::vector<VisitorStroke> strokes = CalibrationStrokes();
 };
 
-// The calibration targets for a stroke at the texture gains only (global gains 0 dB). The strokes'
-// peaks lie up to ~24 dB above their loudness and ~26 dB above their RMS on the transducer, so
-// with the kiosk's default +12 dB / +6 dB only the sharpest clicks reach the soft limiters' knee
-// (-6 dBFS) while the average level is room-filling.
+// The calibration targets for the strokes' mean at the texture gains only (global gains 0 dB).
+// The loudest strokes' peaks lie up to ~26 dB above them on both channels (bubble wrap: -9.7 dBFS
+// sound, -11.1 dBFS transducer), so with the kiosk's default +12 dB / +6 dB only the sharpest
+// clicks pass the soft limiters' knee (-6 dBFS) while the average level is room-filling.
 inline constexpr double kTargetSoundLufs = -36.0;
 inline constexpr double kTargetHapticRmsDb = -36.0;
 // Largest haptic gain the calibration gives a texture (see above).

@@ -89,6 +89,13 @@ Spread MeasureAll(const LevelMeasurement& measurement, const char* label) {
   spread.sound_lowest = sound_lo;
   spread.haptic_lowest = haptic_lo;
   std::printf("  spread %.2f / %.2f dB\n", spread.sound_db, spread.haptic_db);
+  std::printf("%s %-18s", label, "peak dBFS");
+  for (std::size_t t = 0; t < kTextures.size(); ++t) {
+    const auto set = sas::kiosk::Summarise(levels[t]);
+    std::printf("  %s %6.1f/%6.1f", kTextures[t].substr(0, 5).c_str(),
+                20.0 * std::log10(set.sound_peak), 20.0 * std::log10(set.haptic_peak));
+  }
+  std::printf("\n");
   std::printf("%s worst single stroke: sound %.2f dB, vibration %.2f dB\n", label,
               spread.stroke_sound_db, spread.stroke_haptic_db);
   return spread;
