@@ -18,8 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/gesture.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/texture_levels.h"
+#include "kiosk/virtual_visit.h"
 #include "sas/version.h"
 #include "surface/texture_file.h"
 
@@ -135,3 +137,50 @@ TEST_CASE(
   CHECK(spread.stroke_haptic_db <= kStrokeSpreadLimitDb);
 }
 #endif
+
+TEST_CASE("the calibration strokes are three scrapes and three rubs that never pop a bubble",
+          "[kiosk]") {
+  const sas::kiosk::GestureMapping mapping;  // the kiosk engine's pen mapping
+  const auto bubble_wrap = sas::surface::LoadTextureFile(TexturePath("bubble_wrap"));
+  REQUIRE(bubble_wrap.bubbles);
+  int scrapes = 0, rubs = 0;
+  for (const auto& stroke : sas::kiosk::CalibrationStrokes()) {
+    const auto style = sas::kiosk::StyleFromWidth(
+        sas::kiosk::WidthFromTiltMm(stroke.pen.tilt_deg, mapping), mapping);
+    scrapes += style == sas::synth::ProbeStyle::kScrape ? 1 : 0;
+    rubs += style == sas::synth::ProbeStyle::kRub ? 1 : 0;
+    // A pen's full pressure scale is ~4 N of tip force on a bubble (kiosk_engine.cpp).
+    CHECK(stroke.pen.pressure * 4.0 < bubble_wrap.bubbles->pop_force_n);
+    // On the screen from start to end.
+    for (const double f : {stroke.pen.x0, stroke.pen.x1, stroke.pen.y0, stroke.pen.y1}) {
+      CHECK(f > 0.0);
+      CHECK(f < 1.0);
+    }
+  }
+  CHECK(scrapes == 3);
+  CHECK(rubs == 3);
+}
+
+TEST_CASE("a straight pen stroke runs from its start to its end point and then lifts the pen",
+          "[kiosk]") {
+  const sas::kiosk::PenStroke stroke{0.1, 0.2, 0.5, 0.6, 0.4, 0.5, 30.0, {}};
+  const auto pen = sas::kiosk::StraightStroke(stroke, 1.0, 1000, 500);
+  const auto start = pen(1.0);
+  const auto middle = pen(1.2);
+  const auto lifted = pen(1.41);
+  REQUIRE(start);
+  REQUIRE(middle);
+  REQUIRE(lifted);
+  CHECK(start->tip_down);
+  CHECK(start->x_px == Approx(100.0));
+  CHECK(start->y_px == Approx(100.0));
+  CHECK(middle->tip_down);
+  CHECK(middle->pressure == Approx(0.5));
+  CHECK(middle->tilt_deg == Approx(30.0));
+  CHECK(middle->x_px == Approx(300.0));
+  CHECK(middle->y_px == Approx(200.0));
+  CHECK_FALSE(lifted->tip_down);
+  CHECK(lifted->pressure == 0.0);
+  CHECK(lifted->x_px == Approx(500.0));
+  CHECK(lifted->y_px == Approx(300.0));
+}
