@@ -1,8 +1,9 @@
 #pragma once
 // Loudness and vibration-strength matching of the kiosk textures (issue 7, "noisy room"): the
-// same stroke on any of the four textures must sound equally loud and vibrate equally strongly
+// same stroke on any of the four textures should sound equally loud and vibrate equally strongly
 // (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] in its
-// texture.toml are the correction; this file measures them and computes them.
+// texture.toml are the correction; this file measures them and computes them (what one pair of
+// gains per texture can and cannot match: "Calibration" below).
 //
 // Measurement — through the kiosk's own path, so that what is matched is what visitors get:
 // a KioskEngine (kiosk_engine.h) holding the one texture as the kiosk loads it (picture-derived
@@ -34,10 +35,10 @@
 // transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
 // content; through the render path's smooth true height map that took +71 dB, through the
 // engine's picture-derived field (rougher, more low-frequency contact) it takes ~+49 dB, 20 dB
-// more than wood. The cap, 10 dB above that, only stops a broken material from getting an absurd
-// gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks anyway);
-// a capped texture vibrates weaker than the others and the matching test says so.
-// Offline only (texture_generator, tests).
+// more than wood. The cap, about 10 dB above that, only stops a broken material from getting an
+// absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
+// anyway); a capped texture vibrates weaker than the others and the matching test says so. Offline
+// only (texture_generator, tests).
 
 #include <string>
 #include <vector>
