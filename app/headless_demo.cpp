@@ -8,8 +8,7 @@
 
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
-#include "platform/audio/audio_input.h"
-#include "platform/audio/audio_output.h"
+#include "kiosk/virtual_visit.h"
 #include "sas/version.h"
 #include "surface/wav_writer.h"
 #include "ui/picture_io.h"
@@ -20,30 +19,19 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979;
-constexpr double kPenRateHz = 200.0;  // a tablet reports at 100..1000 Hz
-
-struct Stroke {
-  double x0, y0, x1, y1;  // fractions of the screen
-  double pressure = 0.7;
-  double tilt_deg = 0.0;
-  std::optional<synth::ProbeStyle> style;
-};
 
 class Visit {
  public:
   Visit(const HeadlessOptions& options, std::FILE* out)
       : options_(options),
         out_(out),
-        mic_(RecorderConfig(kiosk::KioskConfig{})),
+        mic_(kiosk::RecorderConfigFor(kiosk::KioskConfig{})),
         engine_(EngineOptions(options)),
         view_(engine_, options.width_px, options.height_px),
-        output_(engine_, OutputConfig(engine_.config())) {
+        driver_(engine_, MakeHooks()) {
     engine_.SetRecorder(&mic_.recorder());
     mic_.Start();
-    output_.Start();
-    engine_.SetAudioRunning(true);
-    fs_hz_ = engine_.config().sample_rate_hz;
-    block_frames_ = OutputConfig(engine_.config()).frames_per_buffer;
+    driver_.SetMicrophone(&mic_);
   }
 
   static kiosk::KioskEngineOptions EngineOptions(const HeadlessOptions& options) {
@@ -55,72 +43,25 @@ class Visit {
     engine.virtual_clock = true;
     return engine;
   }
-  static platform::VoiceRecorderConfig RecorderConfig(const kiosk::KioskConfig& config) {
-    platform::VoiceRecorderConfig recorder;
-    recorder.sample_rate_hz = config.sample_rate_hz;
-    recorder.max_duration_s = config.record_max_duration_s;
-    recorder.clip_level = static_cast<float>(config.record_clip_level);
-    recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
-    return recorder;
-  }
-  static platform::AudioOutputConfig OutputConfig(const kiosk::KioskConfig& config) {
-    platform::AudioOutputConfig audio;
-    audio.sample_rate_hz = config.sample_rate_hz;
-    audio.frames_per_buffer = config.buffer_frames;
-    return audio;
-  }
 
-  double now_s() const { return static_cast<double>(now_ns_) * 1e-9; }
-  std::size_t frames_rendered() const { return output_.buffer().size() / 2; }
+  double now_s() const { return driver_.now_s(); }
+  std::size_t frames_rendered() const { return driver_.frames_kept(); }
 
-  // Runs `seconds` of the visit, block by block: pen events due before each block go to the
-  // engine (and the view), the engine ticks, the offline device renders one callback.
-  void Run(double seconds, const std::function<std::optional<kiosk::PenInput>(double)>& pen = {}) {
-    const auto block_ns = static_cast<std::int64_t>(std::llround(block_frames_ * 1e9 / fs_hz_));
-    const std::int64_t end_ns = now_ns_ + static_cast<std::int64_t>(seconds * 1e9);
-    while (now_ns_ < end_ns) {
-      if (pen) {
-        while (next_pen_ns_ < now_ns_) {
-          if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
-            sample->time_ns = next_pen_ns_;
-            engine_.OnPen(*sample);
-            view_.OnStylus(ToStylus(*sample));
-          }
-          next_pen_ns_ += static_cast<std::int64_t>(1e9 / kPenRateHz);
-        }
-      } else {
-        next_pen_ns_ = now_ns_;
-      }
-      view_.Apply(engine_.Tick(now_ns_), now_s());
-      FeedMicrophone();
-      view_.Advance(now_s(), false);
-      output_.RenderBlocks(1);
-      now_ns_ += block_ns;
-    }
-  }
+  // Runs `seconds` of the visit (kiosk/virtual_visit.h); the view sees every pen sample, the
+  // engine's actions and a frame per block, as the live kiosk's window does.
+  void Run(double seconds, const kiosk::PenScript& pen = {}) { driver_.Advance(seconds, pen); }
 
   // One stroke with the pen, then the pen lifted for the tail. Writes <name>.wav and a snapshot
   // <name>.png at the end of the stroke (tip still down). Returns the visit.txt line.
-  std::string DoStroke(const std::string& name, const Stroke& stroke,
+  std::string DoStroke(const std::string& name, kiosk::PenStroke stroke,
                        const std::function<void(double)>& midway = {}, double stroke_s = 0.0) {
-    const double kStrokeS = stroke_s > 0.0 ? stroke_s : options_.stroke_s();
+    stroke.duration_s = stroke_s > 0.0 ? stroke_s : options_.stroke_s();
+    const double kStrokeS = stroke.duration_s;
     const double kTailS = options_.tail_s();
     const std::size_t first = frames_rendered();
-    const double t0 = now_s();
     const double w = options_.width_px, h = options_.height_px;
     bool midway_done = false;
-    const auto pen = [&](double t) -> std::optional<kiosk::PenInput> {
-      const double u = (t - t0) / kStrokeS;
-      kiosk::PenInput sample;
-      sample.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * std::clamp(u, 0.0, 1.0)) * w;
-      sample.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * std::clamp(u, 0.0, 1.0)) * h;
-      sample.tip_down = u < 1.0;
-      sample.pressure = sample.tip_down ? stroke.pressure : 0.0;
-      sample.tilt_deg = stroke.tilt_deg;
-      sample.has_tilt = true;
-      sample.style = stroke.style;
-      return sample;
-    };
+    const auto pen = kiosk::StraightStroke(stroke, now_s(), options_.width_px, options_.height_px);
     Run(kStrokeS * 0.5, pen);
     if (midway) {
       midway(now_s());
@@ -138,8 +79,8 @@ class Visit {
     const std::size_t last = frames_rendered();
     const std::string wav = name + ".wav";
     surface::WriteWav((fs::path(options_.out_dir) / wav).string(),
-                      output_.buffer().data() + first * 2, last - first, 2,
-                      static_cast<int>(fs_hz_));
+                      driver_.output().data() + first * 2, last - first, 2,
+                      static_cast<int>(driver_.sample_rate_hz()));
     char line[512];
     std::snprintf(line, sizeof line,
                   "stroke %s wav=%s png=%s plain=%s x=%.0f y=%.0f down_s=%.3f tail_s=%.3f%s\n",
@@ -158,18 +99,25 @@ class Visit {
   }
 
   void SetPlain(const std::string& name) { plain_ = name + ".png"; }
-  void Token(int texture) { engine_.OnToken(now_ns_, texture); }
-  void RecordButton(bool pressed) { engine_.OnRecordButton(now_ns_, pressed); }
-  void SetVoice(std::vector<float> voice) {
-    voice_ = std::move(voice);
-    voice_pos_ = 0;
-  }
+  void Token(int texture) { engine_.OnToken(driver_.now_ns(), texture); }
+  void RecordButton(bool pressed) { engine_.OnRecordButton(driver_.now_ns(), pressed); }
+  void SetVoice(std::vector<float> voice) { driver_.SetVoice(std::move(voice)); }
   kiosk::KioskEngine& engine() { return engine_; }
   VisitView& view() { return view_; }
-  std::size_t voice_left() const { return voice_.size() - voice_pos_; }
-  void ClearAudio() { output_.ClearBuffer(); }
+  std::size_t voice_left() const { return driver_.voice_left(); }
+  void ClearAudio() { driver_.ClearOutput(); }
 
  private:
+  kiosk::VirtualVisit::Hooks MakeHooks() {
+    kiosk::VirtualVisit::Hooks hooks;
+    hooks.on_pen = [this](const kiosk::PenInput& pen) { view_.OnStylus(ToStylus(pen)); };
+    hooks.on_tick = [this](std::vector<kiosk::SessionAction> actions) {
+      view_.Apply(actions, now_s());
+    };
+    hooks.before_render = [this] { view_.Advance(now_s(), false); };
+    return hooks;
+  }
+
   static ui::StylusSample ToStylus(const kiosk::PenInput& pen) {
     ui::StylusSample s;
     s.time_ns = pen.time_ns;
@@ -182,29 +130,12 @@ class Visit {
     return s;
   }
 
-  // The microphone: while the recorder is armed, one block of the voice per audio block.
-  void FeedMicrophone() {
-    if (!mic_.recorder().Recording()) return;
-    const std::size_t n =
-        std::min<std::size_t>(static_cast<std::size_t>(block_frames_), voice_left());
-    std::vector<float> block(static_cast<std::size_t>(block_frames_), 0.0f);  // room tone: silence
-    std::copy_n(voice_.begin() + static_cast<std::ptrdiff_t>(voice_pos_), n, block.begin());
-    voice_pos_ += n;
-    mic_.Feed(block.data(), block.size());
-  }
-
   HeadlessOptions options_;
   std::FILE* out_;
   platform::FakeAudioInput mic_;  // before the engine: it holds a pointer to the recorder
   kiosk::KioskEngine engine_;
   VisitView view_;
-  platform::OfflineAudioOutput output_;
-  double fs_hz_ = 48000.0;
-  int block_frames_ = 128;
-  std::int64_t now_ns_ = 0;
-  std::int64_t next_pen_ns_ = 0;
-  std::vector<float> voice_;
-  std::size_t voice_pos_ = 0;
+  kiosk::VirtualVisit driver_;  // the audio loop on the virtual clock (after engine and view)
   std::string plain_;
 };
 
@@ -264,7 +195,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
       for (const auto& style : styles) {
         // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
         // each style is heard on intact bubbles; popping comes next.
-        Stroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.55, 0.0, {}};
+        kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
         stroke.tilt_deg = style.tilt_deg;
         stroke.style = style.style;
         report += visit.DoStroke(textures[t].key + "_" + style.name, stroke);
@@ -295,8 +226,8 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
           }
         }
         const double fx0 = bx / options.width_px, fy0 = by / options.height_px;
-        report +=
-            visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 1.0, 0.0, {}}, {}, 0.3);
+        report += visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 0.0, 1.0, 0.0, {}},
+                                 {}, 0.3);
         report += "pop popped=" + std::to_string(visit.engine().popped_bubbles()) +
                   " x=" + std::to_string(static_cast<int>(bx)) +
                   " y=" + std::to_string(static_cast<int>(by)) + "\n";
@@ -309,7 +240,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     visit.Run(0.6);
     visit.SavePlain("token_switch_before");
     report += visit.DoStroke(
-        "token_switch", {0.2, 0.5, 0.8, 0.5, 0.7, 0.0, {}},
+        "token_switch", {0.2, 0.5, 0.8, 0.5, 0.0, 0.7, 0.0, {}},
         [&](double) {
           visit.Token(1);
           visit.SetPlain(textures[1].key);  // what the screen shows after
@@ -336,7 +267,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
       return 1;
     }
     visit.SavePlain("voice_surface");
-    report += visit.DoStroke("voice_scrape", {0.15, 0.4, 0.85, 0.45, 0.7, 0.0, {}});
+    report += visit.DoStroke("voice_scrape", {0.15, 0.4, 0.85, 0.45, 0.0, 0.7, 0.0, {}});
 
     // Nobody touches it: the idle reset wipes the voice and shows the default texture.
     visit.ClearAudio();

@@ -7,9 +7,10 @@
 //   (height below its local mean) -> lens vignetting -> photographic grain -> 8-bit BGR PNG.
 // Outputs, per texture, in <out>/<name>/: picture.png (1920 x 1080 BGR), height.png (16-bit,
 // 65535 = height_scale_mm) and texture.toml (see app/surface/texture_file.h), whose [gains] are
-// calibrated last: the offline renderer plays a built-in stroke on the written files and the gains
-// bring its loudness and vibration strength to common targets (kiosk/texture_levels.h), so the
-// four textures are matched in level.
+// calibrated last: the kiosk engine loads the written files as the kiosk does and plays a set of
+// visitor strokes (scrape and rub, slow to fast) on them, and the gains bring their loudness and
+// vibration strength to common targets (kiosk/texture_levels.h), so the four textures are matched
+// in level for what visitors do.
 //
 // Deterministic: every random number comes from cv::RNG (a documented multiply-with-carry
 // generator) seeded per texture, OpenCV runs single-threaded, and PNG compression settings are
@@ -584,18 +585,18 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
          << note << text << t.toml_tail;
     if (!toml) throw std::runtime_error("cannot write texture.toml into " + folder.string());
   };
-  // Loudness matching (issue 7): the texture file first goes out with 0 dB gains so the offline
-  // renderer can play the calibration stroke on exactly what the kiosk loads (material, height
-  // map as written); then the measured correction replaces them.
+  // Loudness matching (issue 7): the texture file first goes out with 0 dB gains so the kiosk
+  // engine can play the calibration strokes on exactly what the kiosk loads (material, picture as
+  // written); then the measured correction replaces them.
   write_toml({}, "");
   const std::string path = (folder / "texture.toml").string();
   const sas::surface::TextureGains gains = sas::kiosk::CalibrateTextureGains(path);
-  char note[256];
+  char note[320];
   std::snprintf(note, sizeof note,
-                "# Loudness-matched: the built-in \"%s\" gesture renders at %.1f LUFS (ch 1, "
-                "K-weighted)\n# and %.1f dB RMS (ch 2, 40-800 Hz) with these gains "
-                "(kiosk/texture_levels.h).\n",
-                sas::kiosk::LevelMeasurement{}.gesture.c_str(), sas::kiosk::kTargetSoundLufs,
+                "# Loudness-matched through the kiosk engine (kiosk/texture_levels.h): %zu visitor "
+                "strokes,\n# scrape and rub, centred on %.1f LUFS (ch 1, K-weighted) and %.1f dB "
+                "RMS (ch 2, 40-800 Hz).\n",
+                sas::kiosk::CalibrationStrokes().size(), sas::kiosk::kTargetSoundLufs,
                 sas::kiosk::kTargetHapticRmsDb);
   write_toml(gains, note);
 }

@@ -161,7 +161,9 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   }
   saved_counters_ = session_.counters();
 
-  cues_dir_ = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
+  if (options_.spoken_cues) {
+    cues_dir_ = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
+  }
   LoadCues();
   fade_len_ = std::max(
       1, static_cast<int>(std::lround(options_.cross_fade_s * options_.config.sample_rate_hz)));

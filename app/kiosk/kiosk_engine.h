@@ -70,6 +70,7 @@ struct KioskEngineOptions {
   std::string materials_dir;               // searched first (render_command.h search order)
   std::string counters_path;               // empty: counters are not persisted
   std::string cues_dir;                    // empty: FindCuesDir()
+  bool spoken_cues = true;                 // false: no cue files loaded (level calibration)
   int screen_width_px = 1920;              // the screen the pen coordinates refer to
   int screen_height_px = 1080;
   double cross_fade_s = 0.45;   // sound cross-fade on a switch (the picture fades alongside)

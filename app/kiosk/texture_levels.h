@@ -1,25 +1,49 @@
 #pragma once
 // Loudness and vibration-strength matching of the kiosk textures (issue 7, "noisy room"): the
-// same stroke on any of the four textures must sound equally loud and vibrate equally strongly
+// same stroke on any of the four textures should sound equally loud and vibrate equally strongly
 // (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] in its
-// texture.toml are the correction; this file measures them and computes them.
+// texture.toml are the correction; this file measures them and computes them (what one pair of
+// gains per texture can and cannot match: "Calibration" below).
 //
-// Measurement: the offline render path (render_command.h: the texture's material and true height
-// map, the built-in gesture mapped as the renderer maps it, the same synth::Scene the kiosk plays)
-// renders the stroke with the texture's gains plus `global` gains (the kiosk configuration's
-// gains.sound_gain_db / haptic_gain_db, default 0); then, over the part of the gesture where the
-// pen is down (first to last row with pressure > 0):
+// Measurement — through the kiosk's own path, so that what is matched is what visitors get:
+// a KioskEngine (kiosk_engine.h) holding the one texture as the kiosk loads it (picture-derived
+// height field, its material, the scene prepared and no cross-fade running), driven on its virtual
+// clock by VirtualVisit (virtual_visit.h: the headless visit's loop) on the kiosk's 1920 x 1080
+// screen with the kiosk's pen -> probe mapping. It plays the visitor strokes below one after the
+// other, with the pen lifted between them, at the texture's gains `gains` plus `global` gains (the
+// kiosk configuration's gains.sound_gain_db / haptic_gain_db, default 0). Over each stroke's
+// pen-down span (shifted by the engine's one-buffer pen-to-sound delay):
 //   sound   channel 1, BS.1770 K-weighted loudness (LUFS, ungated) — surface/loudness.h says why
 //   haptic  channel 2, RMS in dBFS — the output stage has already band-limited it to 40–800 Hz
 //
-// Calibration: gains = target − measured. The output stage applies the gain to the pickup signal
-// before its soft limiter, so the level is exactly linear in the gain while the stroke's peaks stay
-// below the limiter's knee: then one render at 0 dB gives the answer. When a peak would reach the
-// knee, the calibration renders again at the new gains until it converges (within 0.05 dB).
-// Offline only.
+// Calibration: one pair of gains per texture for all the strokes, computed for each texture on its
+// own (regenerating one texture must not depend on the others): the gains bring the mean of its
+// strokes' levels (in dB, each stroke counting once) to the common target. Matching every stroke's
+// level across the textures in the least-squares sense comes down to exactly that per texture.
+// It cannot match every stroke within 1 dB: the textures' levels do not grow alike with speed
+// and pressure (glass, whose modes lie above 3 kHz, spans 17 dB from its slow firm rub to its fast
+// light scrape; wood 6 dB), so after calibration the same stroke still differs by up to ~10 dB
+// between two textures (sound and vibration; measured by tests/kiosk/test_texture_levels.cpp,
+// figures in README "Textures, loudness matching and spoken cues"), while the mean over the
+// strokes — what a visitor's few strokes on a texture add up to — agrees within 0.05 dB.
+// The output stage applies the gain to the pickup signal before its soft limiter, so the level is
+// exactly linear in the gain while the strokes' peaks stay below the limiter's knee: then one
+// pass at 0 dB gives the answer. When a peak would reach the knee, the calibration plays the
+// strokes again at the new gains until it converges (within 0.05 dB).
+//
+// The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
+// transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
+// content; through the render path's smooth true height map that took +71 dB, through the
+// engine's picture-derived field (rougher, more low-frequency contact) it takes ~+49 dB, 20 dB
+// more than wood. The cap, about 10 dB above that, only stops a broken material from getting an
+// absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
+// anyway); a capped texture vibrates weaker than the others and the matching test says so. Offline
+// only (texture_generator, tests).
 
 #include <string>
+#include <vector>
 
+#include "kiosk/virtual_visit.h"
 #include "surface/texture_file.h"
 
 namespace sas::kiosk {
@@ -31,27 +55,52 @@ struct StrokeLevels {
   double haptic_peak = 0.0;
 };
 
-struct LevelMeasurement {
-  std::string gesture = "slow stroke";  // a built-in gesture (gesture.h)
-  double global_sound_gain_db = 0.0;    // on top of the texture's gains
-  double global_haptic_gain_db = 0.0;
-  int sample_rate_hz = 48000;
+// A stroke of the calibration, as visitors make them at the kiosk.
+struct VisitorStroke {
+  std::string name;  // e.g. "scrape medium"
+  PenStroke pen;     // screen fractions on the kiosk's 1920 x 1080 screen
 };
 
-// The calibration targets for a stroke at the texture gains only (global gains 0 dB). The strokes'
-// peaks lie up to ~24 dB above their loudness (wood's clicks on the grain) and ~26 dB above their
-// RMS on the transducer (glass), so with the kiosk's default +12 dB / +6 dB only the sharpest
-// clicks reach the soft limiters' knee (-6 dBFS) while the average level is room-filling.
+// The calibration strokes: scrape (pen upright) and rub (pen tilted 50°, a 5 mm wide probe), each
+// at a slow firm, a medium and a fast light stroke (40–350 mm/s, pressure 0.3–0.6: below the
+// bubbles' pop force, so bubble wrap is stroked, not popped), in different directions across
+// different parts of the picture.
+const std::vector<VisitorStroke>& CalibrationStrokes();
+
+struct LevelMeasurement {
+  double global_sound_gain_db = 0.0;  // on top of the texture's gains
+  double global_haptic_gain_db = 0.0;
+  std::vector<VisitorStroke> strokes = CalibrationStrokes();
+};
+
+// The calibration targets for the strokes' mean at the texture gains only (global gains 0 dB).
+// The loudest strokes' peaks lie up to ~26 dB above them on both channels (bubble wrap: -9.7 dBFS
+// sound, -11.1 dBFS transducer), so with the kiosk's default +12 dB / +6 dB only the sharpest
+// clicks pass the soft limiters' knee (-6 dBFS) while the average level is room-filling.
 inline constexpr double kTargetSoundLufs = -36.0;
 inline constexpr double kTargetHapticRmsDb = -36.0;
+// Largest haptic gain the calibration gives a texture (see above).
+inline constexpr double kMaxHapticGainDb = 60.0;
 
-// Renders `measurement.gesture` on the texture file `texture_toml` with texture gains `gains`
-// (not the ones in the file: the caller chooses) and returns the levels. Throws on any problem.
-StrokeLevels MeasureStrokeLevels(const std::string& texture_toml,
-                                 const surface::TextureGains& gains,
-                                 const LevelMeasurement& measurement = {});
+// Plays `measurement.strokes` on the texture file `texture_toml` through the kiosk engine with
+// texture gains `gains` (not the ones in the file: the caller chooses) and returns the levels of
+// each stroke, in order. Throws on any problem.
+std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
+                                              const surface::TextureGains& gains,
+                                              const LevelMeasurement& measurement = {});
 
-// The texture gains that bring the stroke to the targets (within 0.05 dB), rounded to 0.01 dB.
+// The mean of a set of strokes' levels (dB) and their largest peaks; `silent` when any is silent.
+struct StrokeSetLevels {
+  double sound_mean_lufs = 0.0;
+  double haptic_mean_rms_db = 0.0;
+  double sound_peak = 0.0;
+  double haptic_peak = 0.0;
+  bool silent = false;
+};
+StrokeSetLevels Summarise(const std::vector<StrokeLevels>& strokes);
+
+// The texture gains that bring the strokes' mean levels to the targets (within 0.05 dB; the haptic
+// gain at most kMaxHapticGainDb), rounded to 0.01 dB.
 surface::TextureGains CalibrateTextureGains(const std::string& texture_toml,
                                             double target_sound_lufs = kTargetSoundLufs,
                                             double target_haptic_rms_db = kTargetHapticRmsDb,

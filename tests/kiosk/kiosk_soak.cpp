@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <functional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,15 +35,14 @@
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
+#include "kiosk/virtual_visit.h"
 #include "platform/audio/audio_input.h"
-#include "platform/audio/audio_output.h"
 #include "platform/log/log.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using sas::kiosk::KioskEngine;
-using sas::kiosk::PenInput;
 
 constexpr int kWidthPx = 1920;
 constexpr int kHeightPx = 1080;
@@ -70,13 +70,12 @@ class Day {
   explicit Day(const Options& options, const std::string& state_dir)
       : options_(options),
         rng_(options.seed),
-        mic_(RecorderConfig()),
+        mic_(sas::kiosk::RecorderConfigFor(sas::kiosk::KioskConfig{})),
         engine_(EngineOptions(state_dir)),
-        core_(engine_),
-        block_(static_cast<std::size_t>(kBlockFrames) * 2) {
+        driver_(engine_, MakeHooks(), /*keep_output=*/false) {
     engine_.SetRecorder(&mic_.recorder());
     mic_.Start();
-    engine_.SetAudioRunning(true);
+    driver_.SetMicrophone(&mic_);
     expected_strokes_.assign(engine_.textures().size(), 0);
     wall_start_ = std::chrono::steady_clock::now();
     warmup_s_ = options_.warmup_hours >= 0.0
@@ -100,18 +99,6 @@ class Day {
   }
 
  private:
-  static constexpr int kBlockFrames = 128;
-  static constexpr double kFs = 48000.0;
-
-  static sas::platform::VoiceRecorderConfig RecorderConfig() {
-    sas::platform::VoiceRecorderConfig recorder;
-    const sas::kiosk::KioskConfig config;
-    recorder.sample_rate_hz = config.sample_rate_hz;
-    recorder.max_duration_s = config.record_max_duration_s;
-    recorder.clip_level = static_cast<float>(config.record_clip_level);
-    recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
-    return recorder;
-  }
   static sas::kiosk::KioskEngineOptions EngineOptions(const std::string& state_dir) {
     sas::kiosk::KioskEngineOptions engine;
     engine.virtual_clock = true;
@@ -121,35 +108,19 @@ class Day {
     return engine;  // the shipped defaults otherwise: 60 s idle timeout, cues if built
   }
 
-  double now_s() const { return static_cast<double>(now_ns_) * 1e-9; }
+  double now_s() const { return driver_.now_s(); }
   double Uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
   int Pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
 
-  // Runs `seconds` of the day block by block (as the headless visit does): pen samples due before
-  // each block go to the engine, the engine ticks, the microphone gets a block while armed, the
-  // callback core renders one device block.
-  void Advance(double seconds, const std::function<std::optional<PenInput>(double)>& pen = {}) {
-    const auto block_ns = static_cast<std::int64_t>(std::llround(kBlockFrames * 1e9 / kFs));
-    const std::int64_t end_ns = now_ns_ + static_cast<std::int64_t>(seconds * 1e9);
-    while (now_ns_ < end_ns) {
-      if (pen) {
-        while (next_pen_ns_ < now_ns_) {
-          if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
-            sample->time_ns = next_pen_ns_;
-            engine_.OnPen(*sample);
-          }
-          next_pen_ns_ += static_cast<std::int64_t>(1e9 / kPenRateHz);
-        }
-      } else {
-        next_pen_ns_ = now_ns_;
-      }
-      engine_.Tick(now_ns_);
-      FeedMicrophone();
-      core_.Run(block_.data(), kBlockFrames, 2, false);
-      for (const float s : block_) {
+  // Each rendered block (kiosk/virtual_visit.h runs the engine as the headless visit does: pen
+  // samples, tick, microphone, one 128-frame device block): NaN count, the minute's memory sample
+  // and the wall-clock limit.
+  sas::kiosk::VirtualVisit::Hooks MakeHooks() {
+    sas::kiosk::VirtualVisit::Hooks hooks;
+    hooks.on_block = [this](std::span<const float> block) {
+      for (const float s : block) {
         if (!std::isfinite(s)) ++nan_;
       }
-      now_ns_ += block_ns;
       if (now_s() >= next_sample_s_) Sample();
       if (options_.max_wall_s > 0.0 && ++blocks_since_clock_ >= 1024) {  // every 2.7 s simulated
         blocks_since_clock_ = 0;
@@ -158,7 +129,12 @@ class Day {
           out_of_time_ = true;
         }
       }
-    }
+    };
+    return hooks;
+  }
+
+  void Advance(double seconds, const sas::kiosk::PenScript& pen = {}) {
+    driver_.Advance(seconds, pen);
   }
 
   void Idle(double seconds) {
@@ -185,16 +161,6 @@ class Day {
     }
     next_sample_s_ += 60.0;
     if (options_.max_wall_s > 0.0 && wall_s > options_.max_wall_s) out_of_time_ = true;
-  }
-
-  void FeedMicrophone() {
-    if (!mic_.recorder().Recording()) return;
-    std::vector<float>& block = mic_block_;
-    block.assign(kBlockFrames, 0.0f);  // room tone: silence once the speaker stops
-    const std::size_t n = std::min<std::size_t>(kBlockFrames, voice_.size() - voice_pos_);
-    std::copy_n(voice_.begin() + static_cast<std::ptrdiff_t>(voice_pos_), n, block.begin());
-    voice_pos_ += n;
-    mic_.Feed(block.data(), block.size());
   }
 
   // Memory is compared at the same point of every cycle: the kiosk idle on its attract screen,
@@ -232,19 +198,8 @@ class Day {
       ++expected_strokes_[static_cast<std::size_t>(surface.texture)];
     }
     ++strokes_;
-    const double t0 = now_s();
-    const auto pen = [&](double t) -> std::optional<PenInput> {
-      const double u = std::clamp((t - t0) / duration_s, 0.0, 1.0);
-      PenInput sample;
-      sample.x_px = (x0 + (x1 - x0) * u) * kWidthPx;
-      sample.y_px = (y0 + (y1 - y0) * u) * kHeightPx;
-      sample.tip_down = t - t0 < duration_s;
-      sample.pressure = sample.tip_down ? pressure : 0.0;
-      sample.tilt_deg = tilt_deg;
-      sample.has_tilt = true;
-      sample.style = style;
-      return sample;
-    };
+    const auto pen = sas::kiosk::StraightStroke(
+        {x0, y0, x1, y1, duration_s, pressure, tilt_deg, style}, now_s(), kWidthPx, kHeightPx);
     Advance(duration_s * 0.5, pen);
     if (midway) midway();
     Advance(duration_s * 0.5 + 0.05, pen);  // and the lift
@@ -263,7 +218,7 @@ class Day {
     Stroke(x0, y0, x1, y1, Uniform(0.3, 2.5), Uniform(0.25, 0.9), tilt, forced, midway);
   }
 
-  void Token(int token) { engine_.OnToken(now_ns_, token); }
+  void Token(int token) { engine_.OnToken(driver_.now_ns(), token); }
 
   void PopBubble() {
     int bubble_token = -1;
@@ -288,21 +243,21 @@ class Day {
   void Record() {
     const bool silent = Pick(6) == 0;  // a visitor who says nothing: the kiosk must refuse it
     const double length_s = Uniform(0.8, 4.5);
-    voice_ = silent ? std::vector<float>(static_cast<std::size_t>(length_s * kFs), 0.0f)
-                    : sas::kiosk::SynthesiseVoice(kFs, length_s, Uniform(85.0, 260.0));
-    voice_pos_ = 0;
-    engine_.OnRecordButton(now_ns_, true);
+    const double fs_hz = driver_.sample_rate_hz();
+    driver_.SetVoice(silent ? std::vector<float>(static_cast<std::size_t>(length_s * fs_hz), 0.0f)
+                            : sas::kiosk::SynthesiseVoice(fs_hz, length_s, Uniform(85.0, 260.0)));
+    engine_.OnRecordButton(driver_.now_ns(), true);
     Advance(0.1);
-    engine_.OnRecordButton(now_ns_, false);
+    engine_.OnRecordButton(driver_.now_ns(), false);
     Advance(3.2);  // the 3 s countdown
-    while (voice_pos_ < voice_.size() &&
+    while (driver_.voice_left() > 0 &&
            engine_.session().mode() == sas::kiosk::SessionMode::kRecording) {
       Advance(0.1);
     }
     if (engine_.session().mode() == sas::kiosk::SessionMode::kRecording) {
-      engine_.OnRecordButton(now_ns_, true);  // the visitor ends the take
+      engine_.OnRecordButton(driver_.now_ns(), true);  // the visitor ends the take
       Advance(0.05);
-      engine_.OnRecordButton(now_ns_, false);
+      engine_.OnRecordButton(driver_.now_ns(), false);
     }
     Advance(0.6);
     if (silent) {
@@ -402,13 +357,7 @@ class Day {
   std::mt19937 rng_;
   sas::platform::FakeAudioInput mic_;  // before the engine: it holds a pointer to the recorder
   KioskEngine engine_;
-  sas::platform::AudioCallbackCore core_;
-  std::vector<float> block_;
-  std::vector<float> mic_block_;
-  std::vector<float> voice_;
-  std::size_t voice_pos_ = 0;
-  std::int64_t now_ns_ = 0;
-  std::int64_t next_pen_ns_ = 0;
+  sas::kiosk::VirtualVisit driver_;  // the audio loop on the virtual clock (after the engine)
   std::chrono::steady_clock::time_point wall_start_;
   double warmup_s_ = 3600.0;
   double next_sample_s_ = 0.0;

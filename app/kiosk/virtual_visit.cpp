@@ -1,0 +1,87 @@
+// Driving the kiosk engine on its virtual clock (see virtual_visit.h).
+#include "kiosk/virtual_visit.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sas::kiosk {
+
+PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px) {
+  return [stroke, t0_s, width_px, height_px](double t_s) -> std::optional<PenInput> {
+    const double u = std::clamp((t_s - t0_s) / stroke.duration_s, 0.0, 1.0);
+    PenInput sample;
+    sample.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * u) * width_px;
+    sample.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * u) * height_px;
+    sample.tip_down = t_s - t0_s < stroke.duration_s;
+    sample.pressure = sample.tip_down ? stroke.pressure : 0.0;
+    sample.tilt_deg = stroke.tilt_deg;
+    sample.has_tilt = true;
+    sample.style = stroke.style;
+    return sample;
+  };
+}
+
+platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config) {
+  platform::VoiceRecorderConfig recorder;
+  recorder.sample_rate_hz = config.sample_rate_hz;
+  recorder.max_duration_s = config.record_max_duration_s;
+  recorder.clip_level = static_cast<float>(config.record_clip_level);
+  recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
+  return recorder;
+}
+
+VirtualVisit::VirtualVisit(KioskEngine& engine, Hooks hooks, bool keep_output, double pen_rate_hz)
+    : engine_(engine),
+      hooks_(std::move(hooks)),
+      keep_output_(keep_output),
+      pen_period_ns_(std::floor(1e9 / pen_rate_hz)),
+      fs_hz_(engine.config().sample_rate_hz),
+      block_frames_(engine.config().buffer_frames),
+      core_(engine),
+      block_(static_cast<std::size_t>(block_frames_) * 2) {
+  engine_.SetAudioRunning(true);  // the callback core below is the audio thread
+}
+
+void VirtualVisit::SetVoice(std::vector<float> voice) {
+  voice_ = std::move(voice);
+  voice_pos_ = 0;
+}
+
+void VirtualVisit::FeedMicrophone() {
+  if (microphone_ == nullptr || !microphone_->recorder().Recording()) return;
+  const std::size_t n =
+      std::min<std::size_t>(static_cast<std::size_t>(block_frames_), voice_left());
+  mic_block_.assign(static_cast<std::size_t>(block_frames_), 0.0f);  // room tone: silence
+  std::copy_n(voice_.begin() + static_cast<std::ptrdiff_t>(voice_pos_), n, mic_block_.begin());
+  voice_pos_ += n;
+  microphone_->Feed(mic_block_.data(), mic_block_.size());
+}
+
+void VirtualVisit::Advance(double seconds, const PenScript& pen) {
+  const auto block_ns = static_cast<std::int64_t>(std::llround(block_frames_ * 1e9 / fs_hz_));
+  const std::int64_t end_ns = now_ns_ + static_cast<std::int64_t>(seconds * 1e9);
+  while (now_ns_ < end_ns) {
+    if (pen) {
+      while (next_pen_ns_ < now_ns_) {
+        if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
+          sample->time_ns = next_pen_ns_;
+          engine_.OnPen(*sample);
+          if (hooks_.on_pen) hooks_.on_pen(*sample);
+        }
+        next_pen_ns_ += static_cast<std::int64_t>(pen_period_ns_);
+      }
+    } else {
+      next_pen_ns_ = now_ns_;
+    }
+    auto actions = engine_.Tick(now_ns_);
+    if (hooks_.on_tick) hooks_.on_tick(std::move(actions));
+    FeedMicrophone();
+    if (hooks_.before_render) hooks_.before_render();
+    core_.Run(block_.data(), block_frames_, 2, false);
+    if (keep_output_) output_.insert(output_.end(), block_.begin(), block_.end());
+    now_ns_ += block_ns;
+    if (hooks_.on_block) hooks_.on_block(block_);
+  }
+}
+
+}  // namespace sas::kiosk

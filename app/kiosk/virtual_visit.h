@@ -1,0 +1,98 @@
+#pragma once
+// VirtualVisit: drives a KioskEngine on its virtual clock the way the kiosk's devices would, one
+// audio block at a time, for everything that plays a visit without real devices: the headless
+// default (app/headless_demo.cpp), the soak run (tests/kiosk/kiosk_soak.cpp) and the texture
+// loudness calibration (kiosk/texture_levels.h), so the three drive the engine with one loop.
+//
+// Each block (config.buffer_frames frames, 128 at 48 kHz = 2.67 ms):
+//   pen samples due before the block (a tablet's report rate, 200 Hz) -> KioskEngine::OnPen
+//   -> KioskEngine::Tick (session timers, recording, switches) -> the microphone gets one block of
+//   the scripted voice while the recorder is armed -> the platform's callback core renders one
+//   device block through KioskEngine::Render -> the clock advances by the block.
+// Hooks let the caller watch each step (the headless visit's view, the soak's NaN count).
+// A straight pen stroke (StraightStroke) is the script all three use.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_input.h"
+#include "platform/audio/audio_output.h"
+
+namespace sas::kiosk {
+
+// The pen at time t (seconds on the visit's clock), or nothing (no report at that time).
+using PenScript = std::function<std::optional<PenInput>(double t_s)>;
+
+// A straight stroke at constant speed between two points given as fractions of the screen.
+struct PenStroke {
+  double x0 = 0.2, y0 = 0.5, x1 = 0.8, y1 = 0.5;  // screen fractions
+  double duration_s = 1.0;                        // tip down for this long, then lifted
+  double pressure = 0.7;                          // 0..1
+  double tilt_deg = 0.0;                          // upright = scrape, tilted = rub (gesture.h)
+  std::optional<synth::ProbeStyle> style;         // forces a style (roll)
+};
+
+// The pen reports of `stroke` starting at `t0_s` on a screen of width x height pixels: a pen
+// (has_tilt), tip down while t - t0 < duration, then lifted at the end point with pressure 0.
+PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px);
+
+// The recorder settings the configuration asks for (the live kiosk's microphone uses the same).
+platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config);
+
+class VirtualVisit {
+ public:
+  struct Hooks {
+    std::function<void(const PenInput&)> on_pen;  // each pen sample, after the engine took it
+    std::function<void(std::vector<SessionAction>)> on_tick;  // the engine's actions each block
+    std::function<void()> before_render;                      // after tick and microphone
+    std::function<void(std::span<const float>)> on_block;     // each rendered block (clock moved)
+  };
+
+  // The engine must have been made with virtual_clock = true. `keep_output`: append every block
+  // to output() (2 interleaved channels).
+  VirtualVisit(KioskEngine& engine, Hooks hooks = {}, bool keep_output = true,
+               double pen_rate_hz = 200.0);
+
+  // Runs `seconds` of the visit (rounded up to whole blocks); `pen` reports at the pen rate.
+  void Advance(double seconds, const PenScript& pen = {});
+
+  // The fake microphone the engine's recorder belongs to, and what is "said" into it while the
+  // recorder is armed (one block per audio block, silence after the end).
+  void SetMicrophone(platform::FakeAudioInput* microphone) { microphone_ = microphone; }
+  void SetVoice(std::vector<float> voice);
+  std::size_t voice_left() const { return voice_.size() - voice_pos_; }
+
+  std::int64_t now_ns() const { return now_ns_; }
+  double now_s() const { return static_cast<double>(now_ns_) * 1e-9; }
+  int block_frames() const { return block_frames_; }
+  double sample_rate_hz() const { return fs_hz_; }
+  const std::vector<float>& output() const { return output_; }
+  std::size_t frames_kept() const { return output_.size() / 2; }
+  void ClearOutput() { output_.clear(); }
+
+ private:
+  void FeedMicrophone();
+
+  KioskEngine& engine_;
+  Hooks hooks_;
+  bool keep_output_;
+  double pen_period_ns_;
+  double fs_hz_;
+  int block_frames_;
+  platform::AudioCallbackCore core_;
+  std::vector<float> block_;
+  std::vector<float> output_;
+  std::vector<float> mic_block_;
+  platform::FakeAudioInput* microphone_ = nullptr;
+  std::vector<float> voice_;
+  std::size_t voice_pos_ = 0;
+  std::int64_t now_ns_ = 0;
+  std::int64_t next_pen_ns_ = 0;
+};
+
+}  // namespace sas::kiosk
