@@ -487,8 +487,12 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     left -= piece;
   }
   // Elasto-plastic and plastic parts: exact exponential relaxation with α frozen per piece.
+  const bool start_known = limits.start_cached && limits.start_z == z0 && left == total;
   for (int i = 0; i < 64 && left > 0.0; ++i) {
-    const double alpha = w < z_ss ? BristleAlpha(w, z_ss, z_ba) : 1.0;
+    const double alpha = (i == 0 && start_known) ? (sign > 0.0 ? limits.start_alpha_positive
+                                                               : limits.start_alpha_negative)
+                         : w < z_ss              ? BristleAlpha(w, z_ss, z_ba)
+                                                 : 1.0;
     double piece = left;
     if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
     const double r = alpha * piece / z_ss;
@@ -501,6 +505,13 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
   out.z1 = sign * w;
   out.mean_z = sign * integral / total;
   return out;
+}
+
+void BristleLimits::CacheStart(double z0) {
+  start_cached = true;
+  start_z = z0;
+  start_alpha_positive = z0 < z_ss ? BristleAlpha(z0, z_ss, z_ba) : 1.0;
+  start_alpha_negative = -z0 < z_ss ? BristleAlpha(-z0, z_ss, z_ba) : 1.0;
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
@@ -550,7 +561,8 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     // coupling (the friction's own coupling correction is small, and any z_ss is passive).
     const double predicted =
         in.free_du + (in.impact_on ? in.coupling * std::max(in.normal_guess_n, 0.0) : 0.0);
-    const BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
+    BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
+    limits.CacheStart(in.z0);
     double last_u = std::numeric_limits<double>::quiet_NaN();
     BristleStep bristle;
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
@@ -638,8 +650,8 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   const double compliance = in.normal_compliance;
   const double probe_part = compliance - in.coupling;  // h² / (2 m)
   const double mu_h = m.mu / in.h;
-  const double v0 = m.Potential(in.x0);
   const double f0 = m.Force(in.x0);
+  const double v0 = f0 * in.x0 / (m.alpha + 1.0);  // V(x0) = k x0^(α+1) / (α+1)
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
   const double c = in.free_dx + in.coupling * in.friction_guess_n;
   double d = (c - compliance * f0) / (1.0 + compliance * (0.5 * m.alpha * f0 / in.x0 + f0 * mu_h));
@@ -689,8 +701,9 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
   if (in.impact_on && in.friction_on && in.friction_normal_n > 0.0) {
     ContactStepOutput fast;
     const double predicted = in.free_du + in.coupling * std::max(in.normal_guess_n, 0.0);
-    if (SolveClosedSlidingStep(impact, friction, in,
-                               friction.Limits(predicted / in.h, in.friction_normal_n), &fast)) {
+    BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
+    limits.CacheStart(in.z0);
+    if (SolveClosedSlidingStep(impact, friction, in, limits, &fast)) {
       return fast;
     }
   }

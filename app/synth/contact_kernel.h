@@ -186,7 +186,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
                    : drive.surface_begin_m + (drive.surface_end_m - drive.surface_begin_m) *
                                                  static_cast<double>(j + 1) * inv_n;
     const double x0 = surface + contact_displacement - probe.height_m;
-    const double free_resonator = FreeContactMotion(modes, n == 1 ? modes.full : sub_maps);
+    const ModeMaps& step_maps = n == 1 ? modes.full : sub_maps;
+    const double free_resonator = FreeContactMotion(modes, step_maps);
     const double v0 = probe.velocity_mps;
     ContactStepInput in;
     in.h = h;
@@ -231,7 +232,9 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
         break;
     }
 
-    AdvanceModes(modes, sub_maps, out.friction_n - out.normal_n);
+    // The free motion of the next sub-step (or of the next full sample) comes out of this pass.
+    AdvanceModes(modes, step_maps, out.friction_n - out.normal_n,
+                 j + 1 < n ? &step_maps : &modes.full);
     contact_displacement = modes.ContactDisplacement();
     if (impact_on) {
       const double acc = (out.normal_n - drive.push_n) / mass;

@@ -98,7 +98,8 @@ void ModalState::Refresh() {
   contact_displacement = q_sum;
   contact_velocity = v_sum;
   pickup_velocity = pickup;
-  free_full_motion = free_next;
+  free_motion = free_next;
+  free_motion_map = -1;
 }
 
 }  // namespace sas::synth

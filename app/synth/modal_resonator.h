@@ -80,7 +80,9 @@ struct ModalState {
   double contact_displacement = 0.0;  // Σ q
   double contact_velocity = 0.0;      // Σ v
   double pickup_velocity = 0.0;       // Σ g v
-  double free_full_motion = 0.0;      // Σ Δq over one full sample with no force
+  double free_motion = 0.0;           // Σ Δq over one step of map free_motion_map with no force
+  int free_motion_map = -1;           // which map: -1 full, L level_maps[L] (MapId; an index, not a
+                                      // pointer, so that a copied state stays valid)
 
   // Fills the packed arrays from `params` (fs in Hz, `substeps` contact sub-steps per sample)
   // and zeroes the state. `keep_inaudible` computes the modes at or above 0.45 fs and those with
@@ -91,7 +93,8 @@ struct ModalState {
   void Reset() {
     q.fill(0.0);
     v.fill(0.0);
-    contact_displacement = contact_velocity = pickup_velocity = free_full_motion = 0.0;
+    contact_displacement = contact_velocity = pickup_velocity = free_motion = 0.0;
+    free_motion_map = -1;  // at rest the free motion is 0 for every map
   }
   // Recomputes the cached sums after q or v were written directly.
   void Refresh();
@@ -120,6 +123,15 @@ struct ModalState {
   }
 };
 
+// Identifies one of `s`'s own maps: -1 full, L for level_maps[L], -2 any other (not cached).
+inline int MapId(const ModalState& s, const ModeMaps& maps) {
+  if (&maps == &s.full) return -1;
+  for (int level = 0; level < s.level_count; ++level) {
+    if (&maps == &s.level_maps[static_cast<std::size_t>(level)]) return level;
+  }
+  return -2;
+}
+
 namespace detail {
 // Two doubles per register (SSE2 / NEON through the compiler's vector extension). Loads and
 // stores go through memcpy: no aliasing assumptions, aligned moves after optimisation.
@@ -138,8 +150,11 @@ inline double Sum2(Double2 x) {
 }  // namespace detail
 
 // Advances every mode by one step of map `steps` under constant contact force `force_n`, and
-// refreshes the cached sums in the same pass. Returns the change of the contact displacement.
-inline double AdvanceModes(ModalState& s, const ModeMaps& steps, double force_n) {
+// refreshes the cached sums in the same pass, including the free motion over the NEXT step, taken
+// with `next` (nullptr: a full sample). Returns the change of the contact displacement.
+inline double AdvanceModes(ModalState& s, const ModeMaps& steps, double force_n,
+                           const ModeMaps* next = nullptr) {
+  const ModeMaps& next_map = next != nullptr ? *next : s.full;
   using detail::Double2;
   using detail::Load2;
   Double2 q_sum{0.0, 0.0}, v_sum{0.0, 0.0}, pickup{0.0, 0.0}, free_next{0.0, 0.0};
@@ -157,20 +172,21 @@ inline double AdvanceModes(ModalState& s, const ModeMaps& steps, double force_n)
     q_sum += q1;
     v_sum += v1;
     pickup += Load2(&s.gain[k]) * v1;
-    free_next += (Load2(&s.full.a11[k]) - one) * q1 + Load2(&s.full.a12[k]) * v1;
+    free_next += (Load2(&next_map.a11[k]) - one) * q1 + Load2(&next_map.a12[k]) * v1;
   }
   const double q_total = detail::Sum2(q_sum);
   const double change = q_total - s.contact_displacement;
   s.contact_displacement = q_total;
   s.contact_velocity = detail::Sum2(v_sum);
   s.pickup_velocity = detail::Sum2(pickup);
-  s.free_full_motion = detail::Sum2(free_next);
+  s.free_motion = detail::Sum2(free_next);
+  s.free_motion_map = MapId(s, next_map);
   return change;
 }
 
 // Change of the contact displacement over one step of `steps` if no force acted.
 inline double FreeContactMotion(const ModalState& s, const ModeMaps& steps) {
-  if (&steps == &s.full) return s.free_full_motion;
+  if (const int id = MapId(s, steps); id != -2 && id == s.free_motion_map) return s.free_motion;
   using detail::Double2;
   using detail::Load2;
   Double2 sum{0.0, 0.0};

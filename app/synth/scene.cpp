@@ -170,13 +170,18 @@ struct Scene::Impl {
            limit * limit;
   }
 
-  // One frame of the idle scene: only the pen position moves (exactly as RenderFrame moves it).
-  void IdleFrame(float* frame) {
-    x_m += gesture.velocity_mps * gesture.direction_x / fs;
-    y_m += gesture.velocity_mps * gesture.direction_y / fs;
+  // `count` frames of the idle scene: zeros, and only the pen position moves (exactly as
+  // RenderFrame moves it, one increment per frame). The increments are finite and bounded (speed
+  // clamped, direction normalised), so a finite position stays finite: one check suffices.
+  void IdleFrames(float* out, int count) {
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
-    frame[0] = 0.0f;
-    frame[1] = 0.0f;
+    const double dx = gesture.velocity_mps * gesture.direction_x / fs;
+    const double dy = gesture.velocity_mps * gesture.direction_y / fs;
+    for (int i = 0; i < count; ++i) {
+      x_m += dx;
+      y_m += dy;
+    }
+    std::fill(out, out + 2 * static_cast<std::ptrdiff_t>(count), 0.0f);
   }
 
   void Release(double velocity_mps) {
@@ -364,10 +369,20 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
     }
     float* frame = interleaved_out + 2 * static_cast<std::ptrdiff_t>(f);
     if (s.idle) {
-      s.IdleFrame(frame);
-    } else {
-      s.RenderFrame(frame);
+      // Idle: the whole run of frames up to the next command at once (the idle check below only
+      // runs while not idle, so only the frame count has to follow).
+      int run_end = frames;
+      if (next < command_count) {
+        run_end = static_cast<int>(std::min<std::uint32_t>(commands[next].frame_offset,
+                                                           static_cast<std::uint32_t>(frames - 1)));
+      }
+      run_end = std::max(run_end, f + 1);
+      s.IdleFrames(frame, run_end - f);
+      s.frame_count += static_cast<std::uint64_t>(run_end - f);
+      f = run_end - 1;
+      continue;
     }
+    s.RenderFrame(frame);
     // Idle check on absolute time (every kIdleCheckFrames frames since Reset), so that skipping
     // starts on the same frame whatever the block size. Entering idle zeroes the inaudible state:
     // the skipped frames then are exactly the zeros written.
