@@ -485,19 +485,49 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     integral += (w + 0.5 * piece) * piece;
     w += piece;
     left -= piece;
+    if (left <= 0.0) {  // all elastic: z1 = z0 + du, mean = z0 + du / 2
+      out.z1 = sign * w;
+      out.mean_z = sign * integral / total;
+      out.has_slope = true;
+      out.dz1_du = 1.0;
+      out.dmean_du = 0.5;
+      return out;
+    }
   }
   // Elasto-plastic and plastic parts: exact exponential relaxation with α frozen per piece.
   const bool start_known = limits.start_cached && limits.start_z == z0 && left == total;
   for (int i = 0; i < 64 && left > 0.0; ++i) {
-    const double alpha = (i == 0 && start_known) ? (sign > 0.0 ? limits.start_alpha_positive
-                                                               : limits.start_alpha_negative)
-                         : w < z_ss              ? BristleAlpha(w, z_ss, z_ba)
-                                                 : 1.0;
+    double alpha = 1.0;
+    if (i == 0 && start_known) {
+      double& cached = sign > 0.0 ? limits.start_alpha_positive : limits.start_alpha_negative;
+      if (std::isnan(cached)) cached = w < z_ss ? BristleAlpha(w, z_ss, z_ba) : 1.0;
+      alpha = cached;
+    } else if (w < z_ss) {
+      alpha = BristleAlpha(w, z_ss, z_ba);
+    }
     double piece = left;
     if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
     const double r = alpha * piece / z_ss;
     double p1 = 0.0, p2 = 0.0;
     Phis(r, &p1, &p2);
+    if (i == 0 && piece == total) {
+      // One piece over the whole slip p = |du| with α frozen: w1 = w + p (1 - α w / z_ss) φ1(r),
+      // mean = p φ2(r) + w φ1(r), r = α p / z_ss, so (with ' = d/dr)
+      //   dw1/dp = (1 - α w / z_ss)(φ1 + r φ1'),  dmean/dp = φ2 + r φ2' + w φ1' α / z_ss,
+      //   φ1' = (e^-r - φ1) / r = (1 - (1 + r) φ1) / r,  φ2' = (φ1 - 2 φ2) / r
+      // (series below r = 1/8, where those differences cancel; 1e-8 is plenty for a Newton slope).
+      double d1 = 0.0, d2 = 0.0;
+      if (r < 0.125) {
+        d1 = -0.5 + r * (1.0 / 3.0 - r * (1.0 / 8.0 - r * (1.0 / 30.0 - r / 144.0)));
+        d2 = -1.0 / 6.0 + r * (1.0 / 12.0 - r * (1.0 / 40.0 - r * (1.0 / 180.0 - r / 1008.0)));
+      } else {
+        d1 = (1.0 - (1.0 + r) * p1) / r;
+        d2 = (p1 - 2.0 * p2) / r;
+      }
+      out.has_slope = true;
+      out.dz1_du = (1.0 - alpha * w / z_ss) * (p1 + r * d1);
+      out.dmean_du = p2 + r * d2 + w * d1 * alpha / z_ss;
+    }
     integral += piece * (piece * p2 + w * p1);
     w += (piece - alpha * w * piece / z_ss) * p1;
     left -= piece;
@@ -510,8 +540,8 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
 void BristleLimits::CacheStart(double z0) {
   start_cached = true;
   start_z = z0;
-  start_alpha_positive = z0 < z_ss ? BristleAlpha(z0, z_ss, z_ba) : 1.0;
-  start_alpha_negative = -z0 < z_ss ? BristleAlpha(-z0, z_ss, z_ba) : 1.0;
+  start_alpha_positive = std::numeric_limits<double>::quiet_NaN();
+  start_alpha_negative = std::numeric_limits<double>::quiet_NaN();
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
@@ -679,7 +709,12 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       out->du = in.free_du - in.coupling * f + in.coupling * e.f;
       return true;
     }
-    if (iteration > 0 && u != u_prev) {
+    if (b.has_slope) {
+      // df/du of FrictionStepForce: σ0 mean' + σ1 z1' / h (while the damping acts) + σ2 / h.
+      const double dz = b.z1 - in.z0;
+      slope_f = friction.sigma0 * b.dmean_du +
+                (dz * u >= 0.0 ? friction.sigma1 * b.dz1_du / in.h : 0.0) + friction.sigma2 / in.h;
+    } else if (iteration > 0 && u != u_prev) {
       const double secant = (f - f_prev) / (u - u_prev);
       if (std::isfinite(secant)) slope_f = secant;
     }

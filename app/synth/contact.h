@@ -111,10 +111,11 @@ struct BristleLimits {
   // α at the step's starting deflection z0, along either slip direction (w = +z0 and w = -z0),
   // cached by CacheStart so that a solver evaluating many slips from the same z0 takes the sine
   // once (AdvanceBristleAt uses them when its z0 equals start_z).
+  // Filled lazily (mutable: a const BristleLimits is still one step's cache); NaN = not yet.
   bool start_cached = false;
   double start_z = 0.0;
-  double start_alpha_positive = 0.0;
-  double start_alpha_negative = 0.0;
+  mutable double start_alpha_positive = 0.0;
+  mutable double start_alpha_negative = 0.0;
   void CacheStart(double z0);
 };
 
@@ -137,6 +138,11 @@ struct FrictionModel {
 struct BristleStep {
   double z1 = 0.0;      // deflection at the end of the step
   double mean_z = 0.0;  // slip-weighted mean deflection over the step (z0 if du = 0)
+  // dz1/du and d(mean_z)/du, where the step is one piece (all elastic, or one relaxation piece);
+  // has_slope = false elsewhere (solvers then use secants).
+  bool has_slope = false;
+  double dz1_du = 0.0;
+  double dmean_du = 0.0;
 };
 BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, double h, double fn);
 // The same with z_ss and z_ba given: the contact step freezes them at the step's predicted slip

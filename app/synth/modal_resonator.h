@@ -33,12 +33,12 @@ ModeStep ComputeModeStep(double frequency_hz, double decay_s, double mass_kg, do
 // The maps of all modes for one step length, one array per coefficient (structure of arrays), so
 // the per-sample pass runs two modes per SIMD register. Slots past the mode count are zero.
 struct ModeMaps {
-  alignas(16) std::array<double, kMaxModes> a11{};
-  alignas(16) std::array<double, kMaxModes> a12{};
-  alignas(16) std::array<double, kMaxModes> a21{};
-  alignas(16) std::array<double, kMaxModes> a22{};
-  alignas(16) std::array<double, kMaxModes> b1{};
-  alignas(16) std::array<double, kMaxModes> b2{};
+  alignas(32) std::array<double, kMaxModes> a11{};
+  alignas(32) std::array<double, kMaxModes> a12{};
+  alignas(32) std::array<double, kMaxModes> a21{};
+  alignas(32) std::array<double, kMaxModes> a22{};
+  alignas(32) std::array<double, kMaxModes> b1{};
+  alignas(32) std::array<double, kMaxModes> b2{};
   void Set(std::size_t k, const ModeStep& m) {
     a11[k] = m.a11;
     a12[k] = m.a12;
@@ -61,13 +61,13 @@ inline constexpr int kMaxSubstepLevels = 9;
 struct ModalState {
   int count = 0;
   int padded_count = 0;                           // count rounded up to even (SIMD pairs)
-  alignas(16) std::array<double, kMaxModes> q{};  // displacement at the contact point, m
-  alignas(16) std::array<double, kMaxModes> v{};  // velocity, m/s
+  alignas(32) std::array<double, kMaxModes> q{};  // displacement at the contact point, m
+  alignas(32) std::array<double, kMaxModes> v{};  // velocity, m/s
   ModeMaps full{};
   ModeMaps sub{};  // the finest level: `substeps` sub-steps per sample
   std::array<double, kMaxModes> mass{};
   std::array<double, kMaxModes> omega0_sq{};
-  alignas(16) std::array<double, kMaxModes> gain{};
+  alignas(32) std::array<double, kMaxModes> gain{};
   double sub_compliance = 0.0;   // Σ b1 over the finest sub-step: Δ(contact displacement) per N
   double full_compliance = 0.0;  // Σ b1 over a full sample
   // Levels, coarsest first: level_substeps[0] = 1 when adaptive (its map is `full`), and the last
@@ -132,70 +132,24 @@ inline int MapId(const ModalState& s, const ModeMaps& maps) {
   return -2;
 }
 
-namespace detail {
-// Two doubles per register (SSE2 / NEON through the compiler's vector extension). Loads and
-// stores go through memcpy: no aliasing assumptions, aligned moves after optimisation.
-using Double2 = double __attribute__((vector_size(16)));
-inline Double2 Load2(const double* p) {
-  Double2 r;
-  __builtin_memcpy(&r, p, sizeof r);
-  return r;
-}
-inline void Store2(double* p, Double2 x) {
-  __builtin_memcpy(p, &x, sizeof x);
-}
-inline double Sum2(Double2 x) {
-  return x[0] + x[1];
-}
-}  // namespace detail
+// The per-sample pass (AdvanceModes / FreeContactMotion below), out of line: it is built twice,
+// for the x86-64 baseline and for AVX2 (picked at load time; the arithmetic and the order of the
+// sums are the same in both, so the output does not depend on the machine).
+double AdvanceModesPass(ModalState& s, const ModeMaps& steps, double force_n, const ModeMaps& next);
+double FreeMotionPass(const ModalState& s, const ModeMaps& steps);
 
 // Advances every mode by one step of map `steps` under constant contact force `force_n`, and
 // refreshes the cached sums in the same pass, including the free motion over the NEXT step, taken
 // with `next` (nullptr: a full sample). Returns the change of the contact displacement.
 inline double AdvanceModes(ModalState& s, const ModeMaps& steps, double force_n,
                            const ModeMaps* next = nullptr) {
-  const ModeMaps& next_map = next != nullptr ? *next : s.full;
-  using detail::Double2;
-  using detail::Load2;
-  Double2 q_sum{0.0, 0.0}, v_sum{0.0, 0.0}, pickup{0.0, 0.0}, free_next{0.0, 0.0};
-  const Double2 force{force_n, force_n};
-  const Double2 one{1.0, 1.0};
-  for (int i = 0; i < s.padded_count; i += 2) {
-    const auto k = static_cast<std::size_t>(i);
-    const Double2 q0 = Load2(&s.q[k]), v0 = Load2(&s.v[k]);
-    const Double2 q1 =
-        Load2(&steps.a11[k]) * q0 + Load2(&steps.a12[k]) * v0 + Load2(&steps.b1[k]) * force;
-    const Double2 v1 =
-        Load2(&steps.a21[k]) * q0 + Load2(&steps.a22[k]) * v0 + Load2(&steps.b2[k]) * force;
-    detail::Store2(&s.q[k], q1);
-    detail::Store2(&s.v[k], v1);
-    q_sum += q1;
-    v_sum += v1;
-    pickup += Load2(&s.gain[k]) * v1;
-    free_next += (Load2(&next_map.a11[k]) - one) * q1 + Load2(&next_map.a12[k]) * v1;
-  }
-  const double q_total = detail::Sum2(q_sum);
-  const double change = q_total - s.contact_displacement;
-  s.contact_displacement = q_total;
-  s.contact_velocity = detail::Sum2(v_sum);
-  s.pickup_velocity = detail::Sum2(pickup);
-  s.free_motion = detail::Sum2(free_next);
-  s.free_motion_map = MapId(s, next_map);
-  return change;
+  return AdvanceModesPass(s, steps, force_n, next != nullptr ? *next : s.full);
 }
 
 // Change of the contact displacement over one step of `steps` if no force acted.
 inline double FreeContactMotion(const ModalState& s, const ModeMaps& steps) {
   if (const int id = MapId(s, steps); id != -2 && id == s.free_motion_map) return s.free_motion;
-  using detail::Double2;
-  using detail::Load2;
-  Double2 sum{0.0, 0.0};
-  const Double2 one{1.0, 1.0};
-  for (int i = 0; i < s.padded_count; i += 2) {
-    const auto k = static_cast<std::size_t>(i);
-    sum += (Load2(&steps.a11[k]) - one) * Load2(&s.q[k]) + Load2(&steps.a12[k]) * Load2(&s.v[k]);
-  }
-  return detail::Sum2(sum);
+  return FreeMotionPass(s, steps);
 }
 
 }  // namespace sas::synth
