@@ -469,6 +469,7 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
   const double total = std::fabs(du);
   const double z_ss = limits.z_ss;
   const double z_ba = limits.z_ba;
+  const double inv_z_ss = limits.inv_z_ss;
   double w = sign * z0;
   if (model.bristle_update == BristleUpdate::kExplicitEuler) {
     // Forward Euler over the whole slip, force from the deflection at the start (explicit).
@@ -507,7 +508,7 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     }
     double piece = left;
     if (alpha < 1.0 && i < 63) piece = std::min(left, 0.25 * z_ss / (1.0 - alpha + 1e-3));
-    const double r = alpha * piece / z_ss;
+    const double r = alpha * piece * inv_z_ss;
     double p1 = 0.0, p2 = 0.0;
     Phis(r, &p1, &p2);
     if (i == 0 && piece == total) {
@@ -525,11 +526,11 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
         d2 = (p1 - 2.0 * p2) / r;
       }
       out.has_slope = true;
-      out.dz1_du = (1.0 - alpha * w / z_ss) * (p1 + r * d1);
-      out.dmean_du = p2 + r * d2 + w * d1 * alpha / z_ss;
+      out.dz1_du = (1.0 - alpha * w * inv_z_ss) * (p1 + r * d1);
+      out.dmean_du = p2 + r * d2 + w * d1 * alpha * inv_z_ss;
     }
     integral += piece * (piece * p2 + w * p1);
-    w += (piece - alpha * w * piece / z_ss) * p1;
+    w += (piece - alpha * w * piece * inv_z_ss) * p1;
     left -= piece;
   }
   out.z1 = sign * w;
@@ -549,6 +550,7 @@ BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
   limits.contact = fn > 0.0;
   if (!limits.contact) return limits;
   limits.z_ss = SteadyDeflection(std::fabs(slip_velocity_mps), fn);
+  limits.inv_z_ss = 1.0 / limits.z_ss;
   limits.z_ba = c_ba * mu_d * fn / sigma0;
   return limits;
 }
@@ -557,12 +559,20 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
   return AdvanceBristleAt(model, z0, du, model.Limits(std::fabs(du) / h, fn));
 }
 
-double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
-                         double h, double noise_n) {
+namespace {
+// FrictionStepForce with 1/h given (the solvers call it several times per step).
+double StepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
+                 double inv_h, double noise_n) {
   const double dz = step.z1 - z0;
   // σ1 acts only while the bristle deflects with the slip (Dupont et al.'s passivity condition).
-  const double damping = dz * du >= 0.0 ? model.sigma1 * dz / h : 0.0;
-  return model.sigma0 * step.mean_z + damping + model.sigma2 * du / h + noise_n;
+  const double damping = dz * du >= 0.0 ? model.sigma1 * dz * inv_h : 0.0;
+  return model.sigma0 * step.mean_z + damping + model.sigma2 * du * inv_h + noise_n;
+}
+}  // namespace
+
+double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
+                         double h, double noise_n) {
+  return StepForce(model, z0, step, du, 1.0 / h, noise_n);
 }
 
 namespace {
@@ -593,12 +603,13 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
         in.free_du + (in.impact_on ? in.coupling * std::max(in.normal_guess_n, 0.0) : 0.0);
     BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
     limits.CacheStart(in.z0);
+    const double inv_h = 1.0 / in.h;
     double last_u = std::numeric_limits<double>::quiet_NaN();
     BristleStep bristle;
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
       last_u = u;
       bristle = AdvanceBristleAt(friction, in.z0, u, limits);
-      f = FrictionStepForce(friction, in.z0, bristle, u, in.h, in.noise_n);
+      f = StepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
       if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
       return u - in.free_du - in.coupling * (ns.force - f);
     };
@@ -615,7 +626,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       auto search = [&](double uu) {
         last_u = uu;
         bristle = AdvanceBristleAt(friction, in.z0, uu, limits);
-        f = FrictionStepForce(friction, in.z0, bristle, uu, in.h, in.noise_n);
+        f = StepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
         const double force =
             in.impact_on ? std::max(force_a + dforce_dc * in.coupling * (f - f_a), 0.0) : 0.0;
         return uu - in.free_du - in.coupling * (force - f);
@@ -679,7 +690,8 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   if (!(in.x0 > 0.0) || !(in.coupling > 0.0)) return false;
   const double compliance = in.normal_compliance;
   const double probe_part = compliance - in.coupling;  // h² / (2 m)
-  const double mu_h = m.mu / in.h;
+  const double inv_h = 1.0 / in.h;
+  const double mu_h = m.mu * inv_h;
   const double f0 = m.Force(in.x0);
   const double v0 = f0 * in.x0 / (m.alpha + 1.0);  // V(x0) = k x0^(α+1) / (α+1)
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
@@ -687,14 +699,14 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   double d = (c - compliance * f0) / (1.0 + compliance * (0.5 * m.alpha * f0 / in.x0 + f0 * mu_h));
   double slope_f = in.slip_slope_guess > 0.0
                        ? (in.slip_slope_guess - 1.0) / in.coupling
-                       : 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) / in.h;
+                       : 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) * inv_h;
   double u_prev = 0.0, f_prev = 0.0;
   for (int iteration = 0; iteration < 6; ++iteration) {
     if (!(in.x0 + d > 0.0)) return false;  // opening: the general solve handles the clamp
     const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h);
     const double u = in.free_du + in.free_dx - d - probe_part * e.f;
     const BristleStep b = AdvanceBristleAt(friction, in.z0, u, limits);
-    const double f = FrictionStepForce(friction, in.z0, b, u, in.h, in.noise_n);
+    const double f = StepForce(friction, in.z0, b, u, inv_h, in.noise_n);
     const double rho = in.free_dx + in.coupling * f - compliance * e.f - d;
     const double scale = std::fabs(d) + std::fabs(in.free_dx) + compliance * std::fabs(e.f) +
                          in.coupling * std::fabs(f);
@@ -713,7 +725,8 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       // df/du of FrictionStepForce: σ0 mean' + σ1 z1' / h (while the damping acts) + σ2 / h.
       const double dz = b.z1 - in.z0;
       slope_f = friction.sigma0 * b.dmean_du +
-                (dz * u >= 0.0 ? friction.sigma1 * b.dz1_du / in.h : 0.0) + friction.sigma2 / in.h;
+                (dz * u >= 0.0 ? friction.sigma1 * b.dz1_du * inv_h : 0.0) +
+                friction.sigma2 * inv_h;
     } else if (iteration > 0 && u != u_prev) {
       const double secant = (f - f_prev) / (u - u_prev);
       if (std::isfinite(secant)) slope_f = secant;

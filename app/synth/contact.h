@@ -108,6 +108,7 @@ struct BristleLimits {
   bool contact = false;  // f_N > 0 (otherwise the bristle is relaxed and carries no force)
   double z_ss = 0.0;
   double z_ba = 0.0;
+  double inv_z_ss = 0.0;  // 1 / z_ss
   // α at the step's starting deflection z0, along either slip direction (w = +z0 and w = -z0),
   // cached by CacheStart so that a solver evaluating many slips from the same z0 takes the sine
   // once (AdvanceBristleAt uses them when its z0 equals start_z).

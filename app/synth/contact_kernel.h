@@ -40,8 +40,14 @@ struct ContactKernelConfig {
   bool adaptive = false;
   std::array<double, kMaxSubstepLevels> level_speed_sq{};
 
+  double rate_hz = 48000.0;       // 1 / period_s
+  double inv_probe_mass = 100.0;  // 1 / probe_mass_kg
+
+  // Sets the timing (and the reciprocals the kernel multiplies by): call after probe_mass_kg.
   void SetTiming(double sample_rate_hz, int contact_substeps) {
     substeps = contact_substeps < 1 ? 1 : contact_substeps;
+    rate_hz = sample_rate_hz;
+    inv_probe_mass = 1.0 / probe_mass_kg;
     period_s = 1.0 / sample_rate_hz;
     sub_step_s = period_s / static_cast<double>(substeps);
   }
@@ -108,7 +114,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.substeps_used = 0;
     return;
   }
-  const double mass = config.probe_mass_kg;
+  const double inv_mass = config.inv_probe_mass;
+  const double rate = config.rate_hz;
   const bool impact_on = config.impact.enabled;
   const bool friction_on = config.friction.enabled && drive.friction_share > 0.0;
   const double period = config.period_s;
@@ -120,7 +127,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     const double x_end_free = drive.surface_end_m + contact_displacement +
                               FreeContactMotion(modes, modes.full) -
                               (probe.height_m + probe.velocity_mps * period -
-                               0.5 * drive.push_n / mass * period * period);
+                               0.5 * drive.push_n * inv_mass * period * period);
     contact = x_start > 0.0 || x_end_free > 0.0;
   } else {
     contact = friction_on && drive.push_n > 0.0;
@@ -130,8 +137,8 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     // Free flight: exact parabola for the probe, exact free ring of the modes, bristle relaxed.
     const double v0 = probe.velocity_mps;
     AdvanceModes(modes, modes.full, 0.0);
-    probe.height_m += v0 * period - 0.5 * drive.push_n / mass * period * period;
-    probe.velocity_mps = v0 - drive.push_n / mass * period;
+    probe.height_m += v0 * period - 0.5 * drive.push_n * inv_mass * period * period;
+    probe.velocity_mps = v0 - drive.push_n * inv_mass * period;
     probe.bristle_m = 0.0;
     probe.normal_n = 0.0;
     probe.friction_n = 0.0;
@@ -150,7 +157,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     // Impact speed: the closing speed the contact would reach at its equilibrium under the push,
     // v² = ẋ² + 2 [V(x) - f_N x - min(V - f_N x)] / m (energy of the probe's motion relative to
     // the surface, measured from the static equilibrium; = ẋ² in free flight without push).
-    const double xdot = (drive.surface_end_m - drive.surface_begin_m) / period +
+    const double xdot = (drive.surface_end_m - drive.surface_begin_m) * rate +
                         modes.ContactVelocity() - probe.velocity_mps;
     if (drive.push_n != probe.equilibrium_push_n) {
       probe.equilibrium_push_n = drive.push_n;
@@ -158,7 +165,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     }
     const double excess =
         config.impact.Potential(x_start) - drive.push_n * x_start - probe.equilibrium_energy_j;
-    const double speed_sq = xdot * xdot + 2.0 * std::max(excess, 0.0) / mass;
+    const double speed_sq = xdot * xdot + 2.0 * std::max(excess, 0.0) * inv_mass;
     int needed = 0;
     while (needed + 1 < modes.level_count &&
            speed_sq > config.level_speed_sq[static_cast<std::size_t>(needed)]) {
@@ -174,11 +181,11 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
   const auto level_index = static_cast<std::size_t>(level);
   const auto& sub_maps = modes.level_maps[level_index];
   const int n = modes.level_substeps[level_index];
-  const double h = n == config.substeps ? config.sub_step_s : period / static_cast<double>(n);
+  const double inv_n = n == 1 ? 1.0 : modes.level_inverse[level_index];
+  const double h = n == config.substeps ? config.sub_step_s : period * inv_n;
   const double sub_compliance = modes.level_compliance[level_index];
-  const double inv_n = 1.0 / static_cast<double>(n);
   const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
-  const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) / period;
+  const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) * rate;
   double surface = drive.surface_begin_m;
   for (int j = 0; j < n; ++j) {
     const double surface_next =
@@ -205,9 +212,9 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     // modes).
     if (needs_rate) in.xdot0 = surface_rate + modes.ContactVelocity() - v0;
     if (impact_on) {
-      in.free_dx =
-          (surface_next - surface) + free_resonator - (v0 * h - 0.5 * drive.push_n / mass * h * h);
-      in.normal_compliance = sub_compliance + 0.5 * h * h / mass;
+      in.free_dx = (surface_next - surface) + free_resonator -
+                   (v0 * h - 0.5 * drive.push_n * inv_mass * h * h);
+      in.normal_compliance = sub_compliance + 0.5 * h * h * inv_mass;
       // Friction sees the normal force of the previous sub-step (explicit in f_N only: the
       // friction step stays passive for any f_N >= 0).
       in.friction_normal_n = drive.friction_share * (probe.normal_n > 0.0 ? probe.normal_n : 0.0);
@@ -237,7 +244,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
                  j + 1 < n ? &step_maps : &modes.full);
     contact_displacement = modes.ContactDisplacement();
     if (impact_on) {
-      const double acc = (out.normal_n - drive.push_n) / mass;
+      const double acc = (out.normal_n - drive.push_n) * inv_mass;
       probe.height_m += v0 * h + 0.5 * acc * h * h;
       probe.velocity_mps = v0 + acc * h;
     }

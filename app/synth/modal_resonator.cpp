@@ -47,6 +47,10 @@ void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, i
   }
   level_substeps[static_cast<std::size_t>(level_count++)] = finest;
   level_compliance.fill(0.0);
+  for (int level = 0; level < level_count; ++level) {
+    const auto l = static_cast<std::size_t>(level);
+    level_inverse[l] = 1.0 / static_cast<double>(level_substeps[l]);
+  }
   const double step_s = 1.0 / sample_rate_hz;
   const int n = params.mode_count < kMaxModes ? params.mode_count : kMaxModes;
   for (int i = 0; i < n; ++i) {

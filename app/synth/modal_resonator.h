@@ -74,6 +74,7 @@ struct ModalState {
   // level is always `substeps` (its map is `sub`).
   int level_count = 1;
   std::array<int, kMaxSubstepLevels> level_substeps{1};
+  std::array<double, kMaxSubstepLevels> level_inverse{1.0};  // 1 / level_substeps
   std::array<double, kMaxSubstepLevels> level_compliance{};
   std::array<ModeMaps, kMaxSubstepLevels> level_maps{};
   // Cached sums of the current state (kept by AdvanceModes, Reset and Refresh).

@@ -88,6 +88,7 @@ struct Scene::Impl {
   // Gesture state set by the last command.
   ProbeCommand gesture{};
   double x_m = 0.0, y_m = 0.0;
+  double step_x_m = 0.0, step_y_m = 0.0;  // pen movement per frame (set with the gesture)
   double surface_m = 0.0;     // felt profile at the probe position (end of the last sample)
   bool burst_flight = false;  // tip up, released by a burst: park once it leaves the surface
   bool burst_touched = false;
@@ -115,6 +116,7 @@ struct Scene::Impl {
     output.Reset();
     gesture = ProbeCommand{};
     x_m = y_m = 0.0;
+    step_x_m = step_y_m = 0.0;
     surface_m = 0.0;
     burst_flight = burst_touched = false;
     burst_samples = 0;
@@ -175,11 +177,9 @@ struct Scene::Impl {
   // clamped, direction normalised), so a finite position stays finite: one check suffices.
   void IdleFrames(float* out, int count) {
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
-    const double dx = gesture.velocity_mps * gesture.direction_x / fs;
-    const double dy = gesture.velocity_mps * gesture.direction_y / fs;
     for (int i = 0; i < count; ++i) {
-      x_m += dx;
-      y_m += dy;
+      x_m += step_x_m;
+      y_m += step_y_m;
     }
     std::fill(out, out + 2 * static_cast<std::ptrdiff_t>(count), 0.0f);
   }
@@ -219,6 +219,8 @@ struct Scene::Impl {
     probe.bristle_m *= turn;
     probe.friction_n *= turn;
     gesture = c;
+    step_x_m = c.velocity_mps * c.direction_x / fs;
+    step_y_m = c.velocity_mps * c.direction_y / fs;
     x_m = c.x_m;
     y_m = c.y_m;
     if (c.tip_down && !was_down) {
@@ -240,8 +242,8 @@ struct Scene::Impl {
   }
 
   void RenderFrame(float* frame) {
-    x_m += gesture.velocity_mps * gesture.direction_x / fs;
-    y_m += gesture.velocity_mps * gesture.direction_y / fs;
+    x_m += step_x_m;
+    y_m += step_y_m;
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
     if (probe.active) {
       const double next = Felt(x_m, y_m);
