@@ -710,7 +710,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
     const double rho = in.free_dx + in.coupling * f - compliance * e.f - d;
     const double scale = std::fabs(d) + std::fabs(in.free_dx) + compliance * std::fabs(e.f) +
                          in.coupling * std::fabs(f);
-    if (std::fabs(rho) <= 1e-11 * scale) {
+    if (std::fabs(rho) <= 1e-10 * scale) {
       out->normal_n = e.f;
       out->friction_n = f;
       out->z1 = b.z1;
