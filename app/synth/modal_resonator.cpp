@@ -123,24 +123,29 @@ __attribute__((target_clones("default", "avx2"))) double AdvanceModesPass(ModalS
   Double4 q_sum{0.0, 0.0, 0.0, 0.0}, v_sum = q_sum, pickup = q_sum, free_next = q_sum;
   const Double4 force{force_n, force_n, force_n, force_n};
   const Double4 one{1.0, 1.0, 1.0, 1.0};
-  for (int i = 0; i < s.padded_count; i += 4) {
+  // Locals: the byte-wise stores below may alias anything, so nothing is re-read from `s`.
+  const int count = s.padded_count;
+  double* const q = s.q.data();
+  double* const v = s.v.data();
+  const double* const gains = s.gain.data();
+  for (int i = 0; i < count; i += 4) {
     const auto k = static_cast<std::size_t>(i);
     Double4 q0, v0, a11, a12, a21, a22, b1, b2, gain, n11, n12;
-    SAS_LOAD4(q0, &s.q[k]);
-    SAS_LOAD4(v0, &s.v[k]);
+    SAS_LOAD4(q0, q + k);
+    SAS_LOAD4(v0, v + k);
     SAS_LOAD4(a11, &steps.a11[k]);
     SAS_LOAD4(a12, &steps.a12[k]);
     SAS_LOAD4(a21, &steps.a21[k]);
     SAS_LOAD4(a22, &steps.a22[k]);
     SAS_LOAD4(b1, &steps.b1[k]);
     SAS_LOAD4(b2, &steps.b2[k]);
-    SAS_LOAD4(gain, &s.gain[k]);
+    SAS_LOAD4(gain, gains + k);
     SAS_LOAD4(n11, &next.a11[k]);
     SAS_LOAD4(n12, &next.a12[k]);
     const Double4 q1 = a11 * q0 + a12 * v0 + b1 * force;
     const Double4 v1 = a21 * q0 + a22 * v0 + b2 * force;
-    __builtin_memcpy(&s.q[k], &q1, sizeof q1);
-    __builtin_memcpy(&s.v[k], &v1, sizeof v1);
+    __builtin_memcpy(q + k, &q1, sizeof q1);
+    __builtin_memcpy(v + k, &v1, sizeof v1);
     q_sum += q1;
     v_sum += v1;
     pickup += gain * v1;
