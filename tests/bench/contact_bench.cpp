@@ -741,7 +741,10 @@ int main(int argc, char** argv) {
   }
 
   // Acceptance 2: the kiosk scene as configured (material's scheme, automatic oversampling) and
-  // the idle scene, measured in the same run.
+  // the idle scene, measured in the same run. A run is short (the 2.1 s stroke takes ~50 ms), so
+  // these take the best of more repetitions: the build machine is shared, and the best run is
+  // the one least disturbed by other work.
+  const int cost_reps = opt.quick ? opt.reps : std::max(opt.reps, 15);
   double active_ns = 0.0, idle_ns = 0.0, no_haptic_ns = 0.0;
   int default_os = 0;
   {
@@ -750,12 +753,12 @@ int main(int argc, char** argv) {
     probe_scene.Prepare(scene_material, kiosk_output, grating.View());
     default_os = probe_scene.contact_oversample();
     const SceneRun active = RenderScene(scene_material, kiosk_output, grating.View(),
-                                        stroke_commands, stroke_frames, opt.reps);
+                                        stroke_commands, stroke_frames, cost_reps);
     active_ns = active.seconds * 1e9 / static_cast<double>(stroke_frames);
     synth::OutputParams no_haptic = kiosk_output;
     no_haptic.haptic_enabled = false;
     no_haptic_ns = RenderScene(scene_material, no_haptic, grating.View(), stroke_commands,
-                               stroke_frames, opt.reps)
+                               stroke_frames, cost_reps)
                        .seconds *
                    1e9 / static_cast<double>(stroke_frames);
     // Idle: after the stroke the pen is lifted; render until the scene skips, then time it.
@@ -777,7 +780,7 @@ int main(int argc, char** argv) {
     }
     const double idle_after_s = static_cast<double>(blocks) * 128.0 / kFs;
     const long idle_blocks = static_cast<long>(10 * kFs / 128);
-    const double seconds = BestSeconds(opt.reps, [&] {
+    const double seconds = BestSeconds(cost_reps, [&] {
       for (long b = 0; b < idle_blocks; ++b) scene.Process(nullptr, 0, out.data(), 128);
     });
     idle_ns = seconds * 1e9 / (static_cast<double>(idle_blocks) * 128.0);
@@ -792,8 +795,8 @@ int main(int argc, char** argv) {
           : SchemeName(scene_material.impact.scheme) + " (not implemented in this build: runs " +
                 SchemeName(synth::ContactScheme::kDiscreteGradient) + ")";
   std::printf(
-      "full kiosk scene (32 modes, impact + friction + output stage, %s, oversampling x%d "
-      "chosen by the scene): %.0f ns/sample = %.2f %% of one core at 48 kHz (target <= 2 %%)\n",
+      "full kiosk scene (32 modes, impact + friction + output stage, %s, adaptive "
+      "oversampling up to x%d): %.0f ns/sample = %.2f %% of one core at 48 kHz (target <= 2 %%)\n",
       scene_scheme.c_str(), default_os, active_ns, 100.0 * core_fraction);
   std::printf("  without the haptic path: %.0f ns/sample\n", no_haptic_ns);
   std::printf("idle scene: %.2f ns/sample = %.3f %% of the active scene's cost (target <= 1 %%)\n",
@@ -900,14 +903,15 @@ int main(int argc, char** argv) {
                 "`slow stroke` on `grating`, %s with the scene's adaptive oversampling, up to "
                 "×%d): **%.0f ns per sample = %.2f %% of one core at 48 kHz** (target ≤ 2 %%; "
                 "%.0f ns without the haptic path); its spectral error against the reference is "
-                "%.1e (waveform %.1e), at the chaos floor. Idle scene (pen up, decayed): **%.2f ns "
+                "%.1e (waveform %.1e), %s the chaos floor. Idle scene (pen up, decayed): **%.2f ns "
                 "per sample = %.3f %% of the "
                 "active cost** (target ≤ 1 %%). 60 s ring-down with the idle skip off: %.1f ns "
                 "per sample in the first second, %.1f in the last (ratio %.2f, target within "
                 "20 %%).\n",
                 scene_scheme.c_str(), default_os, active_ns, 100.0 * core_fraction, no_haptic_ns,
-                auto_scene_error, auto_scene_waveform, idle_ns, 100.0 * idle_ratio, first_ns,
-                last_ns, ring_ratio);
+                auto_scene_error, auto_scene_waveform,
+                auto_scene_error <= scene_floor ? "within" : "above", idle_ns, 100.0 * idle_ratio,
+                first_ns, last_ns, ring_ratio);
   md << summary;
   {
     std::ofstream out(md_path);
