@@ -20,25 +20,25 @@ void Phis(double r, double* phi1, double* phi2) {
   if (r < 0.125) {
     // φ1 = Σ (-r)^n / (n+1)!, φ2 = Σ (-r)^n / (n+2)!: the terms to n = 9 leave < 1e-16 for
     // r < 1/8, and a bristle sliding a fraction of z_ss per step (the usual case) needs no exp.
-    constexpr double kInvFactorial[] = {1.0,
-                                        1.0,
-                                        1.0 / 2.0,
-                                        1.0 / 6.0,
-                                        1.0 / 24.0,
-                                        1.0 / 120.0,
-                                        1.0 / 720.0,
-                                        1.0 / 5040.0,
-                                        1.0 / 40320.0,
-                                        1.0 / 362880.0,
-                                        1.0 / 3628800.0,
-                                        1.0 / 39916800.0};
-    double p1 = kInvFactorial[10], p2 = kInvFactorial[11];
-    for (int n = 8; n >= 0; --n) {
-      p1 = kInvFactorial[n + 1] - r * p1;
-      p2 = kInvFactorial[n + 2] - r * p2;
-    }
-    *phi1 = p1;
-    *phi2 = p2;
+    // Estrin's scheme (pairs, then powers of x²) keeps the dependency chain short.
+    const double x = -r, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+    constexpr double c[12] = {1.0,
+                              1.0,
+                              1.0 / 2.0,
+                              1.0 / 6.0,
+                              1.0 / 24.0,
+                              1.0 / 120.0,
+                              1.0 / 720.0,
+                              1.0 / 5040.0,
+                              1.0 / 40320.0,
+                              1.0 / 362880.0,
+                              1.0 / 3628800.0,
+                              1.0 / 39916800.0};  // 1 / n!
+    // Coefficients of x^n: φ1 -> c[n + 1], φ2 -> c[n + 2].
+    *phi1 = (c[1] + c[2] * x) + x2 * (c[3] + c[4] * x) +
+            x4 * ((c[5] + c[6] * x) + x2 * (c[7] + c[8] * x)) + x8 * (c[9] + c[10] * x);
+    *phi2 = (c[2] + c[3] * x) + x2 * (c[4] + c[5] * x) +
+            x4 * ((c[6] + c[7] * x) + x2 * (c[8] + c[9] * x)) + x8 * (c[10] + c[11] * x);
     return;
   }
   const double e = std::expm1(-r);
@@ -73,8 +73,9 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
     return s;
   }
   const double f1 = m.k * m.PowAlpha(x1);
-  s.g = (f1 * x1 / (a + 1.0) - v0) / d;
-  s.dg = (f1 - s.g) / d;
+  const double inv_d = 1.0 / d;
+  s.g = (f1 * x1 * m.inv_alpha_plus_one - v0) * inv_d;
+  s.dg = (f1 - s.g) * inv_d;
   return s;
 }
 
@@ -404,6 +405,7 @@ void ImpactModel::Set(const ImpactParams& params) {
   k = params.stiffness;
   mu = params.dissipation_s_per_m;
   alpha = params.shape_alpha;
+  inv_alpha_plus_one = 1.0 / (alpha + 1.0);
   shape_ = alpha == 1.0   ? Shape::kOne
            : alpha == 1.5 ? Shape::kThreeHalves
            : alpha == 2.0 ? Shape::kTwo
@@ -412,7 +414,7 @@ void ImpactModel::Set(const ImpactParams& params) {
 
 double ImpactModel::Potential(double x) const {
   if (x <= 0.0) return 0.0;
-  return k * PowAlpha(x) * x / (alpha + 1.0);
+  return k * PowAlpha(x) * x * inv_alpha_plus_one;
 }
 
 double ImpactModel::Force(double x) const {
@@ -693,7 +695,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   const double inv_h = 1.0 / in.h;
   const double mu_h = m.mu * inv_h;
   const double f0 = m.Force(in.x0);
-  const double v0 = f0 * in.x0 / (m.alpha + 1.0);  // V(x0) = k x0^(α+1) / (α+1)
+  const double v0 = f0 * in.x0 * m.inv_alpha_plus_one;  // V(x0) = k x0^(α+1) / (α+1)
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
   const double c = in.free_dx + in.coupling * in.friction_guess_n;
   double d = (c - compliance * f0) / (1.0 + compliance * (0.5 * m.alpha * f0 / in.x0 + f0 * mu_h));

@@ -80,9 +80,10 @@ bool IsContactSchemeImplemented(ContactScheme scheme);
 
 struct ImpactModel {
   bool enabled = false;
-  double k = 0.0;      // N/m^α
-  double mu = 0.0;     // s/m (λ = μ k)
-  double alpha = 1.5;  // shape
+  double k = 0.0;                   // N/m^α
+  double mu = 0.0;                  // s/m (λ = μ k)
+  double alpha = 1.5;               // shape
+  double inv_alpha_plus_one = 0.4;  // 1 / (α + 1), for V = k x^α · x / (α + 1)
 
   void Set(const ImpactParams& params);
   double Potential(double x) const;  // k x₊^(α+1)/(α+1), J
