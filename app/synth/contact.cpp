@@ -692,16 +692,15 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   if (!(in.x0 > 0.0) || !(in.coupling > 0.0)) return false;
   const double compliance = in.normal_compliance;
   const double probe_part = compliance - in.coupling;  // h² / (2 m)
-  const double inv_h = 1.0 / in.h;
+  const double inv_h = in.inv_h > 0.0 ? in.inv_h : 1.0 / in.h;
   const double mu_h = m.mu * inv_h;
-  const double f0 = m.Force(in.x0);
+  const double f0_over_x0 = m.k * m.PowAlphaMinusOne(in.x0);  // k x0^(α-1)
+  const double f0 = f0_over_x0 * in.x0;
   const double v0 = f0 * in.x0 * m.inv_alpha_plus_one;  // V(x0) = k x0^(α+1) / (α+1)
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
   const double c = in.free_dx + in.coupling * in.friction_guess_n;
-  double d = (c - compliance * f0) / (1.0 + compliance * (0.5 * m.alpha * f0 / in.x0 + f0 * mu_h));
-  double slope_f = in.slip_slope_guess > 0.0
-                       ? (in.slip_slope_guess - 1.0) / in.coupling
-                       : 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) * inv_h;
+  double d = (c - compliance * f0) / (1.0 + compliance * (0.5 * m.alpha * f0_over_x0 + f0 * mu_h));
+  double slope_f = 0.0;  // df/du: analytic where the bristle step gives it, else secant or guess
   double u_prev = 0.0, f_prev = 0.0;
   for (int iteration = 0; iteration < 6; ++iteration) {
     if (!(in.x0 + d > 0.0)) return false;  // opening: the general solve handles the clamp
@@ -732,6 +731,10 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
     } else if (iteration > 0 && u != u_prev) {
       const double secant = (f - f_prev) / (u - u_prev);
       if (std::isfinite(secant)) slope_f = secant;
+    } else if (iteration == 0) {
+      slope_f = in.slip_slope_guess > 0.0
+                    ? (in.slip_slope_guess - 1.0) / in.coupling
+                    : 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) * inv_h;
     }
     u_prev = u;
     f_prev = f;
@@ -751,7 +754,8 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
   if (in.impact_on && in.friction_on && in.friction_normal_n > 0.0) {
     ContactStepOutput fast;
     const double predicted = in.free_du + in.coupling * std::max(in.normal_guess_n, 0.0);
-    BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
+    BristleLimits limits = friction.Limits(in.inv_h > 0.0 ? predicted * in.inv_h : predicted / in.h,
+                                           in.friction_normal_n);
     limits.CacheStart(in.z0);
     if (SolveClosedSlidingStep(impact, friction, in, limits, &fast)) {
       return fast;

@@ -88,6 +88,19 @@ struct ImpactModel {
   void Set(const ImpactParams& params);
   double Potential(double x) const;  // k x₊^(α+1)/(α+1), J
   double Force(double x) const;      // k x₊^α (elastic part), N
+  // x^(α-1) for x > 0 (so k x^(α-1) = f(x) / x without a division), same fast paths.
+  double PowAlphaMinusOne(double x) const {
+    switch (shape_) {
+      case Shape::kOne:
+        return 1.0;
+      case Shape::kThreeHalves:
+        return std::sqrt(x);
+      case Shape::kTwo:
+        return x;
+      default:
+        return std::pow(x, alpha - 1.0);
+    }
+  }
   // x^α for x > 0, with sqrt/multiply fast paths for α = 1, 1.5, 2 (the common shapes).
   double PowAlpha(double x) const {
     switch (shape_) {
@@ -168,6 +181,7 @@ double FrictionStepForce(const FrictionModel& model, double z0, const BristleSte
 // with F the normal force on the probe (up) and f the friction force on the resonator.
 struct ContactStepInput {
   double h = 0.0;
+  double inv_h = 0.0;  // 1 / h (0: the solver divides)
   double x0 = 0.0;
   double free_dx = 0.0;
   double normal_compliance = 0.0;  // coupling + h²/(2 m_probe) > 0

@@ -198,6 +198,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     const double v0 = probe.velocity_mps;
     ContactStepInput in;
     in.h = h;
+    in.inv_h = rate * static_cast<double>(n);
     in.x0 = x0;
     in.coupling = sub_compliance;
     in.impact_on = impact_on;
