@@ -433,11 +433,13 @@ void FrictionModel::Set(const FrictionParams& params) {
   v_s = params.stribeck_velocity_mps;
   c_ba = params.breakaway_ratio;
   bristle_update = params.bristle_update;
+  inv_v_s = 1.0 / v_s;
+  inv_sigma0 = 1.0 / sigma0;
 }
 
 double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
-  const double ratio = v_mps / v_s;
-  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio * ratio)) / sigma0;
+  const double ratio = v_mps * inv_v_s;
+  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio * ratio)) * inv_sigma0;
 }
 
 double FrictionModel::SteadySlidingForce(double v_mps, double fn) const {
@@ -553,7 +555,7 @@ BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
   if (!limits.contact) return limits;
   limits.z_ss = SteadyDeflection(std::fabs(slip_velocity_mps), fn);
   limits.inv_z_ss = 1.0 / limits.z_ss;
-  limits.z_ba = c_ba * mu_d * fn / sigma0;
+  limits.z_ba = c_ba * mu_d * fn * inv_sigma0;
   return limits;
 }
 

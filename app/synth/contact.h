@@ -142,6 +142,7 @@ struct FrictionModel {
   bool enabled = false;
   double sigma0 = 0.0, sigma1 = 0.0, sigma2 = 0.0, sigma3 = 0.0;
   double mu_s = 0.0, mu_d = 0.0, v_s = 0.1, c_ba = 0.1;
+  double inv_v_s = 10.0, inv_sigma0 = 0.0;  // 1 / v_s, 1 / σ0 (set by Set)
   BristleUpdate bristle_update = BristleUpdate::kExponential;
 
   void Set(const FrictionParams& params);
