@@ -493,9 +493,7 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     if (left <= 0.0) {  // all elastic: z1 = z0 + du, mean = z0 + du / 2
       out.z1 = sign * w;
       out.mean_z = sign * integral / total;
-      out.has_slope = true;
-      out.dz1_du = 1.0;
-      out.dmean_du = 0.5;
+      out.slope = BristleStep::Slope::kElastic;
       return out;
     }
   }
@@ -516,22 +514,13 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     double p1 = 0.0, p2 = 0.0;
     Phis(r, &p1, &p2);
     if (i == 0 && piece == total) {
-      // One piece over the whole slip p = |du| with α frozen: w1 = w + p (1 - α w / z_ss) φ1(r),
-      // mean = p φ2(r) + w φ1(r), r = α p / z_ss, so (with ' = d/dr)
-      //   dw1/dp = (1 - α w / z_ss)(φ1 + r φ1'),  dmean/dp = φ2 + r φ2' + w φ1' α / z_ss,
-      //   φ1' = (e^-r - φ1) / r = (1 - (1 + r) φ1) / r,  φ2' = (φ1 - 2 φ2) / r
-      // (series below r = 1/8, where those differences cancel; 1e-8 is plenty for a Newton slope).
-      double d1 = 0.0, d2 = 0.0;
-      if (r < 0.125) {
-        d1 = -0.5 + r * (1.0 / 3.0 - r * (1.0 / 8.0 - r * (1.0 / 30.0 - r / 144.0)));
-        d2 = -1.0 / 6.0 + r * (1.0 / 12.0 - r * (1.0 / 40.0 - r * (1.0 / 180.0 - r / 1008.0)));
-      } else {
-        d1 = (1.0 - (1.0 + r) * p1) / r;
-        d2 = (p1 - 2.0 * p2) / r;
-      }
-      out.has_slope = true;
-      out.dz1_du = (1.0 - alpha * w * inv_z_ss) * (p1 + r * d1);
-      out.dmean_du = p2 + r * d2 + w * d1 * alpha * inv_z_ss;
+      // One piece over the whole slip: BristleSlope can give the derivatives from these.
+      out.slope = BristleStep::Slope::kOnePiece;
+      out.piece_r = r;
+      out.piece_phi1 = p1;
+      out.piece_phi2 = p2;
+      out.piece_w = w;
+      out.piece_alpha = alpha;
     }
     integral += piece * (piece * p2 + w * p1);
     w += (piece - alpha * w * piece * inv_z_ss) * p1;
@@ -547,6 +536,40 @@ void BristleLimits::CacheStart(double z0) {
   start_z = z0;
   start_alpha_positive = std::numeric_limits<double>::quiet_NaN();
   start_alpha_negative = std::numeric_limits<double>::quiet_NaN();
+}
+
+bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
+                  double* dmean_du) {
+  switch (step.slope) {
+    case BristleStep::Slope::kElastic:  // z1 = z0 + du, mean = z0 + du / 2
+      *dz1_du = 1.0;
+      *dmean_du = 0.5;
+      return true;
+    case BristleStep::Slope::kOnePiece: {
+      // One piece over the whole slip p = |du| with α frozen: w1 = w + p (1 - α w / z_ss) φ1(r),
+      // mean = p φ2(r) + w φ1(r), r = α p / z_ss, so (with ' = d/dr)
+      //   dw1/dp = (1 - α w / z_ss)(φ1 + r φ1'),  dmean/dp = φ2 + r φ2' + w φ1' α / z_ss,
+      //   φ1' = (e^-r - φ1) / r = (1 - (1 + r) φ1) / r,  φ2' = (φ1 - 2 φ2) / r
+      // (series below r = 1/8, where those differences cancel; 1e-8 is plenty for a Newton slope).
+      // Along the slip and in z the signs cancel: dz1/du = dw1/dp, dmean_z/du = dmean_w/dp.
+      const double r = step.piece_r, p1 = step.piece_phi1, p2 = step.piece_phi2;
+      double d1 = 0.0, d2 = 0.0;
+      if (r < 0.125) {
+        d1 = -0.5 + r * (1.0 / 3.0 - r * (1.0 / 8.0 - r * (1.0 / 30.0 - r / 144.0)));
+        d2 = -1.0 / 6.0 + r * (1.0 / 12.0 - r * (1.0 / 40.0 - r * (1.0 / 180.0 - r / 1008.0)));
+      } else {
+        d1 = (1.0 - (1.0 + r) * p1) / r;
+        d2 = (p1 - 2.0 * p2) / r;
+      }
+      const double alpha_w = step.piece_alpha * limits.inv_z_ss;
+      *dz1_du = (1.0 - alpha_w * step.piece_w) * (p1 + r * d1);
+      *dmean_du = p2 + r * d2 + step.piece_w * d1 * alpha_w;
+      return true;
+    }
+    case BristleStep::Slope::kUnknown:
+    default:
+      return false;
+  }
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
@@ -724,12 +747,12 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       out->du = in.free_du - in.coupling * f + in.coupling * e.f;
       return true;
     }
-    if (b.has_slope) {
+    double dz1_du = 0.0, dmean_du = 0.0;
+    if (BristleSlope(b, limits, &dz1_du, &dmean_du)) {
       // df/du of FrictionStepForce: σ0 mean' + σ1 z1' / h (while the damping acts) + σ2 / h.
       const double dz = b.z1 - in.z0;
-      slope_f = friction.sigma0 * b.dmean_du +
-                (dz * u >= 0.0 ? friction.sigma1 * b.dz1_du * inv_h : 0.0) +
-                friction.sigma2 * inv_h;
+      slope_f = friction.sigma0 * dmean_du +
+                (dz * u >= 0.0 ? friction.sigma1 * dz1_du * inv_h : 0.0) + friction.sigma2 * inv_h;
     } else if (iteration > 0 && u != u_prev) {
       const double secant = (f - f_prev) / (u - u_prev);
       if (std::isfinite(secant)) slope_f = secant;

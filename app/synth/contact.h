@@ -158,11 +158,11 @@ struct FrictionModel {
 struct BristleStep {
   double z1 = 0.0;      // deflection at the end of the step
   double mean_z = 0.0;  // slip-weighted mean deflection over the step (z0 if du = 0)
-  // dz1/du and d(mean_z)/du, where the step is one piece (all elastic, or one relaxation piece);
-  // has_slope = false elsewhere (solvers then use secants).
-  bool has_slope = false;
-  double dz1_du = 0.0;
-  double dmean_du = 0.0;
+  // What BristleSlope needs for dz1/du and d(mean_z)/du, where the step is one piece (all
+  // elastic, or one relaxation piece with α frozen); kUnknown elsewhere (solvers use secants).
+  enum class Slope : std::uint8_t { kUnknown, kElastic, kOnePiece };
+  Slope slope = Slope::kUnknown;
+  double piece_r = 0.0, piece_phi1 = 0.0, piece_phi2 = 0.0, piece_w = 0.0, piece_alpha = 0.0;
 };
 BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, double h, double fn);
 // The same with z_ss and z_ba given: the contact step freezes them at the step's predicted slip
@@ -171,6 +171,10 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
 // (work = Δ(σ0 z²/2) + σ0 ∫ α w²/z_ss ≥ Δ(σ0 z²/2)).
 BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
                              const BristleLimits& limits);
+// dz1/du and d(mean_z)/du of a step made by AdvanceBristleAt with `limits` (for Newton solves);
+// false where the step was not one piece.
+bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
+                  double* dmean_du);
 
 // Friction force over the step for slip du (see the header comment); `noise_n` is σ3 w.
 double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "synth/contact.h"
 #include "synth/scene.h"
 #include "synth_test_support.h"
 
@@ -257,4 +258,41 @@ TEST_CASE(
     CHECK(Chatter(RubForce(m, fs, 2.0, fn)) > 1.0);
     CHECK(Chatter(RubForce(m, fs, 0.2, fn)) < 0.05);
   }
+}
+
+TEST_CASE(
+    "the bristle step's analytic slope (for the contact's Newton solve) matches central "
+    "differences within 1e-4 wherever the step is one piece",
+    "[dsp]") {
+  FrictionParams params;
+  params.enabled = true;
+  params.bristle_stiffness = 1e4;
+  params.bristle_damping = 10.0;
+  params.static_coefficient = 0.3;
+  params.dynamic_coefficient = 0.18;
+  params.stribeck_velocity_mps = 0.05;
+  params.breakaway_ratio = 0.7;
+  FrictionModel model;
+  model.Set(params);
+  const BristleLimits limits = model.Limits(0.03, 1.0);
+  int one_piece = 0, elastic = 0;
+  for (const double z_fraction : {-0.9, -0.2, 0.0, 0.3, 0.69, 0.75, 0.9, 0.99, 1.2}) {
+    for (const double du_fraction : {-0.3, -0.02, -1e-3, 1e-4, 1e-3, 0.02, 0.3, 2.0}) {
+      const double z0 = z_fraction * limits.z_ss;
+      const double du = du_fraction * limits.z_ss;
+      const BristleStep step = AdvanceBristleAt(model, z0, du, limits);
+      double dz1 = 0.0, dmean = 0.0;
+      if (!BristleSlope(step, limits, &dz1, &dmean)) continue;
+      (step.slope == BristleStep::Slope::kElastic ? elastic : one_piece) += 1;
+      const double e = 1e-4 * std::fabs(du);
+      const BristleStep plus = AdvanceBristleAt(model, z0, du + e, limits);
+      const BristleStep minus = AdvanceBristleAt(model, z0, du - e, limits);
+      if (plus.slope != step.slope || minus.slope != step.slope) continue;  // at a piece boundary
+      INFO("z0 " << z_fraction << " z_ss, du " << du_fraction << " z_ss");
+      CHECK(dz1 == Approx((plus.z1 - minus.z1) / (2.0 * e)).epsilon(1e-4).margin(1e-9));
+      CHECK(dmean == Approx((plus.mean_z - minus.mean_z) / (2.0 * e)).epsilon(1e-4).margin(1e-9));
+    }
+  }
+  CHECK(elastic > 3);
+  CHECK(one_piece > 10);
 }
