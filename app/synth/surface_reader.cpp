@@ -9,6 +9,7 @@ namespace sas::synth {
 void SurfaceReader::Prepare(const HeightFieldView& field) {
   field_ = field;
   max_height_m_ = 0.0;
+  inv_pitch_ = field_.pitch_m > 0.0 ? 1.0 / field_.pitch_m : 0.0;
   if (field_.empty() || field_.summed_area == nullptr) {
     field_ = HeightFieldView{};
     return;
@@ -39,11 +40,11 @@ double SurfaceReader::Integral(double px, double py) const {
 
 double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
   if (field_.empty() || !std::isfinite(x_m) || !std::isfinite(y_m)) return 0.0;
-  const double pitch = field_.pitch_m;
+  const double inv_pitch = inv_pitch_;
   const double w = static_cast<double>(field_.width), hgt = static_cast<double>(field_.height);
   // Window at least one pixel wide: a point probe reads the pixel it is on.
-  const double half = 0.5 * std::max(width_m / pitch, 1.0);
-  double cx = std::clamp(x_m / pitch, 0.0, w);
+  const double half = 0.5 * std::max(width_m * inv_pitch, 1.0);
+  double cx = std::clamp(x_m * inv_pitch, 0.0, w);
   double x0 = cx - half, x1 = cx + half;
   // Shift (not shrink) the window at the edges so its width, hence its smoothing, stays the same.
   if (x0 < 0.0) {
@@ -56,7 +57,7 @@ double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
   }
   double y0 = 0.0, y1 = hgt;
   if (field_.height > 1) {
-    const double cy = std::clamp(y_m / pitch, 0.0, hgt);
+    const double cy = std::clamp(y_m * inv_pitch, 0.0, hgt);
     y0 = cy - half;
     y1 = cy + half;
     if (y0 < 0.0) {

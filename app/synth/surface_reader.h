@@ -36,6 +36,7 @@ class SurfaceReader {
 
   HeightFieldView field_{};
   double max_height_m_ = 0.0;
+  double inv_pitch_ = 0.0;  // 1 / pitch (the per-sample lookups multiply)
 };
 
 }  // namespace sas::synth
