@@ -438,12 +438,8 @@ void FrictionModel::Set(const FrictionParams& params) {
 }
 
 double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
-  return StribeckFactor(v_mps) * fn * inv_sigma0;
-}
-
-double FrictionModel::StribeckFactor(double slip_velocity_mps) const {
-  const double ratio = slip_velocity_mps * inv_v_s;
-  return mu_d + (mu_s - mu_d) * std::exp(-ratio * ratio);
+  const double ratio = v_mps * inv_v_s;
+  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio * ratio)) * inv_sigma0;
 }
 
 double FrictionModel::SteadySlidingForce(double v_mps, double fn) const {
@@ -577,14 +573,10 @@ bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* 
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
-  return LimitsFromFactor(StribeckFactor(std::fabs(slip_velocity_mps)), fn);
-}
-
-BristleLimits FrictionModel::LimitsFromFactor(double stribeck_factor, double fn) const {
   BristleLimits limits;
   limits.contact = fn > 0.0;
   if (!limits.contact) return limits;
-  limits.z_ss = stribeck_factor * fn * inv_sigma0;
+  limits.z_ss = SteadyDeflection(std::fabs(slip_velocity_mps), fn);
   limits.inv_z_ss = 1.0 / limits.z_ss;
   limits.z_ba = c_ba * mu_d * fn * inv_sigma0;
   return limits;
@@ -636,11 +628,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     // coupling (the friction's own coupling correction is small, and any z_ss is passive).
     const double predicted =
         in.free_du + (in.impact_on ? in.coupling * std::max(in.normal_guess_n, 0.0) : 0.0);
-    const double stribeck = in.stribeck_factor > 0.0
-                                ? in.stribeck_factor
-                                : friction.StribeckFactor(std::fabs(predicted / in.h));
-    out.stribeck_factor = stribeck;
-    BristleLimits limits = friction.LimitsFromFactor(stribeck, in.friction_normal_n);
+    BristleLimits limits = friction.Limits(predicted / in.h, in.friction_normal_n);
     limits.CacheStart(in.z0);
     const double inv_h = 1.0 / in.h;
     double last_u = std::numeric_limits<double>::quiet_NaN();
@@ -791,12 +779,8 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
   if (in.impact_on && in.friction_on && in.friction_normal_n > 0.0) {
     ContactStepOutput fast;
     const double predicted = in.free_du + in.coupling * std::max(in.normal_guess_n, 0.0);
-    const double stribeck = in.stribeck_factor > 0.0
-                                ? in.stribeck_factor
-                                : friction.StribeckFactor(std::fabs(
-                                      in.inv_h > 0.0 ? predicted * in.inv_h : predicted / in.h));
-    BristleLimits limits = friction.LimitsFromFactor(stribeck, in.friction_normal_n);
-    fast.stribeck_factor = stribeck;
+    BristleLimits limits = friction.Limits(in.inv_h > 0.0 ? predicted * in.inv_h : predicted / in.h,
+                                           in.friction_normal_n);
     limits.CacheStart(in.z0);
     if (SolveClosedSlidingStep(impact, friction, in, limits, &fast)) {
       return fast;

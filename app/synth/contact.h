@@ -152,10 +152,6 @@ struct FrictionModel {
   double SteadySlidingForce(double v_mps, double fn) const;
   // z_ss and z_ba at slip speed |v| and normal force fn.
   BristleLimits Limits(double slip_velocity_mps, double fn) const;
-  // The Stribeck factor μ_d + (μ_s - μ_d) exp(-(v/v_s)²) (z_ss = factor · fn / σ0), and the limits
-  // from a factor already known (the kernel keeps one per sample across its sub-steps).
-  double StribeckFactor(double slip_velocity_mps) const;
-  BristleLimits LimitsFromFactor(double stribeck_factor, double fn) const;
 };
 
 // Result of advancing the bristle along a slip du over a step h at normal force fn.
@@ -201,8 +197,6 @@ struct ContactStepInput {
   double noise_n = 0.0;            // σ3 w for this step
   double friction_guess_n = 0.0;   // friction force of the previous step (start of the solve)
   double slip_slope_guess = 0.0;  // slope of the slip residual found by the previous step (0: none)
-  double stribeck_factor = 0.0;   // FrictionModel::StribeckFactor to use (0: from this step's
-                                  // predicted slip speed)
   double normal_guess_n = 0.0;    // normal force of the previous step (IEQ mid-step predictor,
                                   // friction's predicted slip speed)
   double xdot0 = 0.0;             // compression rate at the start (explicit, trapezoid schemes)
@@ -220,7 +214,6 @@ struct ContactStepOutput {
   double z1 = 0.0;
   double aux1 = 0.0;              // the scheme's contact state after the step (see aux0)
   double slip_slope = 0.0;        // slope of the slip residual at the root (next step's guess)
-  double stribeck_factor = 0.0;   // the Stribeck factor the step used (0: no friction)
   double contact_energy_j = 0.0;  // energy the scheme holds in the contact after the step: V(x1)
                                   // (discrete gradient), E (explicit, trapezoid) or ψ²/2 (IEQ)
 };

@@ -187,7 +187,6 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
   const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
   const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) * rate;
   double surface = drive.surface_begin_m;
-  double stribeck_factor = 0.0;  // set by the first sub-step's friction solve
   for (int j = 0; j < n; ++j) {
     const double surface_next =
         j + 1 == n ? drive.surface_end_m
@@ -208,10 +207,6 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     in.noise_n = drive.noise_n;
     in.normal_guess_n = probe.normal_n;
     in.slip_slope_guess = probe.slip_slope;
-    // z_ss is frozen at the first sub-step's predicted slip speed for the whole sample (one exp
-    // per sample; any z_ss keeps the bristle passive, and the slip speed hardly changes within
-    // a sample).
-    in.stribeck_factor = stribeck_factor;
     in.friction_guess_n = probe.friction_n;
     in.aux0 = probe.contact_aux;
     // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
@@ -259,7 +254,6 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     probe.friction_n = out.friction_n;
     probe.contact_aux = out.aux1;
     probe.slip_slope = out.slip_slope;
-    stribeck_factor = out.stribeck_factor;
     probe.contact_energy_j = out.contact_energy_j;
     if (out.normal_n != 0.0 || out.friction_n != 0.0) probe.touched = true;
     surface = surface_next;
