@@ -14,8 +14,9 @@
 // Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
 // kLowVibrationRampS (no click on the transducer) and then holds the exact value.
 // Stroke gains (the kiosk's per-stroke loudness matching, kiosk/stroke_gain.h): two linear factors
-// in [0, kMaxStrokeGain] set at run time; a change ramps linearly over kLowVibrationRampS like the
-// trim (on the transducer the two multiply into one ramped factor), Reset() jumps to them.
+// in [0, kMaxStrokeGain] set at run time; a change ramps linearly over the time asked for
+// (kLowVibrationRampS by default, kMinStrokeRampS at least; on the transducer the two multiply into
+// one ramped factor), Reset() jumps to them.
 
 #include <algorithm>
 #include <array>
@@ -41,6 +42,7 @@ class OutputStage {
   static constexpr double kKnee = 0.5;
   static constexpr double kLowVibrationRampS = 0.02;
   static constexpr double kMaxStrokeGain = 10.0;  // +20 dB
+  static constexpr double kMinStrokeRampS = 0.001;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();
@@ -80,7 +82,7 @@ class OutputStage {
 
   // Real-time safe: starts the ramps to the stroke gains (linear, clamped to [0, kMaxStrokeGain];
   // non-finite: 1).
-  void SetStrokeGains(double sound, double haptic);
+  void SetStrokeGains(double sound, double haptic, double ramp_s = kLowVibrationRampS);
   double stroke_sound_gain() const { return stroke_sound_target_; }
   double stroke_haptic_gain() const { return stroke_haptic_; }
   // The largest stroke gain (current or ramp target, at least 1): bounds the output's gain over
@@ -111,7 +113,7 @@ class OutputStage {
   double stroke_haptic_ = 1.0;  // requested haptic factor (part of the trim's target)
   bool haptic_enabled_ = true;
 
-  void StartTrimRamp();
+  void StartTrimRamp(double samples);
 };
 
 }  // namespace sas::synth

@@ -80,6 +80,7 @@ struct Scene::Impl {
   // Written by the control thread (Scene::SetStrokeGains), read once per block by Process().
   std::atomic<double> stroke_sound_gain{1.0};
   std::atomic<double> stroke_haptic_gain{1.0};
+  std::atomic<double> stroke_ramp_s{0.02};
   double stroke_bound = 1.0;  // OutputStage::StrokeGainBound() for this block
   SceneSkips skips{};
   bool friction_skipped = false;  // the last sample left friction out (relaxed_friction)
@@ -369,7 +370,7 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
   if (const double sound = s.stroke_sound_gain.load(std::memory_order_relaxed),
       haptic = s.stroke_haptic_gain.load(std::memory_order_relaxed);
       sound != s.output.stroke_sound_gain() || haptic != s.output.stroke_haptic_gain()) {
-    s.output.SetStrokeGains(sound, haptic);
+    s.output.SetStrokeGains(sound, haptic, s.stroke_ramp_s.load(std::memory_order_relaxed));
     if (s.idle) s.output.Reset();  // silent (its state is zero): the gains may jump
   }
   s.stroke_bound = s.output.StrokeGainBound();
@@ -412,7 +413,8 @@ void Scene::SetLowVibration(bool on) {
   impl_->low_vibration.store(on, std::memory_order_relaxed);
 }
 
-void Scene::SetStrokeGains(double sound, double haptic) {
+void Scene::SetStrokeGains(double sound, double haptic, double ramp_s) {
+  impl_->stroke_ramp_s.store(ramp_s, std::memory_order_relaxed);
   impl_->stroke_sound_gain.store(sound, std::memory_order_relaxed);
   impl_->stroke_haptic_gain.store(haptic, std::memory_order_relaxed);
 }
