@@ -50,7 +50,10 @@ double ReferenceLevel(std::vector<double> levels) {
   if (levels.empty()) return 0.0;
   std::sort(levels.begin(), levels.end());
   const std::size_t n = levels.size();
-  return n % 2 == 1 ? levels[n / 2] : 0.5 * (levels[n / 2 - 1] + levels[n / 2]);
+  const double median = n % 2 == 1 ? levels[n / 2] : 0.5 * (levels[n / 2 - 1] + levels[n / 2]);
+  const double lo = levels.front(), hi = levels.back();
+  if (hi - lo > 2.0 * kMaxStrokeCorrectionDb) return 0.5 * (lo + hi);  // none can: halfway
+  return std::clamp(median, hi - kMaxStrokeCorrectionDb, lo + kMaxStrokeCorrectionDb);
 }
 
 StrokeGainMap::StrokeGainMap(const std::vector<const surface::StrokeLevelTable*>& tables) {

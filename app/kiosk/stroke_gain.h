@@ -9,15 +9,19 @@
 // surface::StrokeLevelTable), and the kiosk corrects every stroke by the difference between the
 // reference level for that stroke and the texture's own:
 //
-//   reference(style, speed, pressure) = median over the loaded textures' tables (dB)
+//   reference(style, speed, pressure) = median over the loaded textures' tables (dB), moved just
+//                                       enough that every texture reaches it within
+//                                       kMaxStrokeCorrectionDb
 //   correction(texture, ...)          = reference - table(texture), interpolated
 //
 // so the stroke dynamics (faster and harder = louder) stay those of the typical texture and only
-// the texture-to-texture differences go. The median (of four: the mean of the middle two) rather
-// than the mean, so that one texture that cannot follow (broken glass rubbed slowly sticks and
-// stays ~30 dB below the others; its vibration, cracks only, is capped by kMaxHapticGainDb) does
-// not pull the others down with it; its correction stops at kMaxStrokeCorrectionDb. The reference
-// is formed at load time from the tables, so each texture's table is measured on its own
+// the texture-to-texture differences go. The median (of four: the mean of the middle two), so an
+// outlier does not set the level for all; but where one texture lies more than
+// kMaxStrokeCorrectionDb from it (broken glass rubbed slowly sticks and stays ~25 dB below the
+// others; its vibration, cracks only, is capped by kMaxHapticGainDb) the reference moves towards
+// it just far enough that it can still be matched, and halfway between the extremes when the
+// textures span more than twice the limit (then the two extremes stay apart by the excess). The
+// reference is formed at load time from the tables, so each texture's table is measured on its own
 // (regenerating one texture does not depend on the others); a texture without a table, or with a
 // grid that differs from the first table's, gets no correction (0 dB) and is left out of the
 // reference. Interpolation: linear in log speed and in pressure within the grid (bilinear), held at
@@ -42,7 +46,7 @@ struct StrokeCorrection {
   double haptic_db = 0.0;
 };
 
-// The reference level of one grid point from the textures' levels there (the median).
+// The reference level of one grid point from the textures' levels there (as above).
 double ReferenceLevel(std::vector<double> levels);
 
 // The table's levels at (style, speed, pressure), interpolated as above.

@@ -51,8 +51,8 @@ TEST_CASE("table levels interpolate linearly in log speed and pressure and hold 
 }
 
 TEST_CASE(
-    "the correction brings each texture to the median of the textures' levels, leaves out a "
-    "table on another grid and stops at its limit",
+    "the correction brings each texture to the median of the textures' levels moved within reach "
+    "of every texture, leaves out a table on another grid and stops at its limit",
     "[kiosk]") {
   const auto a = Table(-40.0), b = Table(-30.0), c = Table(-36.0);
   auto other_grid = Table(-20.0);
@@ -67,12 +67,17 @@ TEST_CASE(
   CHECK(map.Correction(3, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
   CHECK(map.Correction(4, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
   CHECK(map.Correction(-1, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
-  // A texture far below the others gets at most kMaxStrokeCorrectionDb.
+  // The median, moved so that a texture far off can still reach it within the limit (18 dB) ...
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -36.0}) == Approx(-36.0));
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -60.0, -36.0}) == Approx(-42.0));
+  // ... and halfway between the extremes when they are more than twice the limit apart.
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -90.0, -36.0}) == Approx(-60.0));
   const auto silent = Table(-90.0);
   const StrokeGainMap limited({&a, &b, &silent});
   CHECK(limited.Correction(2, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
         Approx(sas::kiosk::kMaxStrokeCorrectionDb));
-  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -90.0, -36.0}) == Approx(-38.0));
+  CHECK(limited.Correction(1, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
+        Approx(-sas::kiosk::kMaxStrokeCorrectionDb));
 }
 
 TEST_CASE(

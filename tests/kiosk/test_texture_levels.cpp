@@ -155,8 +155,9 @@ Spread MeasureAll(LevelMeasurement measurement, int places, const char* label) {
 }  // namespace
 
 // Whether the committed tables ask for more than the largest correction for grid point `k`
-// (sound or vibration) on some texture: broken glass rubbed slowly sticks and stays ~30 dB below
-// the others, and its vibration (cracks only, no mode below 3 kHz) is capped by kMaxHapticGainDb.
+// (sound or vibration) on some texture: only when the textures span more than twice the limit
+// there (broken glass rubbed slowly sticks and stays ~25 dB below the others; its vibration,
+// cracks only, no mode below 3 kHz, is capped by kMaxHapticGainDb).
 void ClampedPoints(std::vector<bool>* sound, std::vector<bool>* haptic) {
   std::vector<sas::surface::StrokeLevelTable> tables;
   for (const auto& name : kTextures) {
@@ -176,10 +177,10 @@ void ClampedPoints(std::vector<bool>* sound, std::vector<bool>* haptic) {
     const double sound_mean = sas::kiosk::ReferenceLevel(sound_levels);
     const double haptic_mean = sas::kiosk::ReferenceLevel(haptic_levels);
     for (const auto& t : tables) {
-      if (std::fabs(sound_mean - t.sound_lufs[k]) > sas::kiosk::kMaxStrokeCorrectionDb) {
+      if (std::fabs(sound_mean - t.sound_lufs[k]) > sas::kiosk::kMaxStrokeCorrectionDb + 1e-9) {
         (*sound)[k] = true;
       }
-      if (std::fabs(haptic_mean - t.haptic_rms_db[k]) > sas::kiosk::kMaxStrokeCorrectionDb) {
+      if (std::fabs(haptic_mean - t.haptic_rms_db[k]) > sas::kiosk::kMaxStrokeCorrectionDb + 1e-9) {
         (*haptic)[k] = true;
       }
     }
@@ -227,25 +228,28 @@ TEST_CASE(
       std::printf("grid: point %zu vibration: a texture needs more than 18 dB, not checked\n", k);
     }
   }
-  // Most of the grid is checked (the limit only excuses broken glass's extremes: 9 of the 32
-  // sound and vibration points: 2 sound, 7 vibration).
+  // Most of the grid is checked (the limit only excuses textures more than 36 dB apart: none of
+  // the 32 sound and vibration points with the committed textures).
   CHECK(checked >= static_cast<int>(points.size()));
   // And near the level the calibration aimed for (so the gains are not all matched at silence;
-  // broken glass's capped vibration pulls the mean over the textures down a little).
+  // where broken glass's vibration lies far below the others' the reference moves down so that
+  // it can follow, 3.5 dB on average over the grid).
   CHECK(std::fabs(spread.sound_mean - sas::kiosk::kTargetSoundLufs) <= 1.5);
-  CHECK(std::fabs(spread.haptic_mean - sas::kiosk::kTargetHapticRmsDb) <= 3.0);
+  CHECK(std::fabs(spread.haptic_mean - sas::kiosk::kTargetHapticRmsDb) <= 4.5);
 }
 
 // The held-out strokes and the default gains are too slow for the sanitizer build (~10x slower)
 // and exercise no other code than the grid check, so that build leaves them out.
 #if !defined(__SANITIZE_ADDRESS__)
-// Held-out strokes do not reach 1 dB: where a stroke runs and in which direction set much of its
-// level on some textures (broken glass: the cracks it crosses, ~8 dB sound and ~30 dB vibration
-// from one place to the next for the same stroke; wooden board: along or across the grain), which
-// a table over style, speed and pressure cannot follow (README, "Loudness matching"). The bounds
-// are the measured spreads (mean over 4 places: 9.1 dB sound, 16.5 dB vibration; with one gain pair
-// per texture the same strokes spread 9.6 dB and 19.5 dB) plus ~1 dB, so a change that makes a
-// stroke jump still shows.
+// Held-out strokes do not all reach 1 dB. The rubs do nearly (1.1 / 0.7 dB and 1.8 / 1.4 dB,
+// sound / vibration, mean over 4 places); the scrapes, a narrow tip, do not (5.7 / 11.4 dB and
+// 9.1 / 16.5 dB): wooden board comes out 3-9 dB quieter than the others (its level depends on the
+// stroke's direction against the grain and on the tip's width, neither an axis of the table) and
+// broken glass's vibration 7-9 dB stronger (it comes only from the cracks a stroke crosses). At a
+// single place the same stroke differs by up to 12.6 dB / 31 dB. The bounds are those measured
+// spreads plus ~1 dB, so a change that makes a stroke jump still shows; with the one gain pair per
+// texture committed before, the same strokes spread 16.8 dB and 34.4 dB. README, "Textures,
+// loudness matching and spoken cues".
 constexpr double kHeldOutSoundLimitDb = 10.0;
 constexpr double kHeldOutHapticLimitDb = 17.5;
 
