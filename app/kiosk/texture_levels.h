@@ -1,9 +1,9 @@
 #pragma once
 // Loudness and vibration-strength matching of the kiosk textures (issue 7, "noisy room"): the
 // same stroke on any of the four textures should sound equally loud and vibrate equally strongly
-// (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] in its
-// texture.toml are the correction; this file measures them and computes them (what one pair of
-// gains per texture can and cannot match: "Calibration" below).
+// (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] and [levels]
+// in its texture.toml are what the kiosk corrects with (stroke_gain.h); this file measures and
+// computes them ("Calibration" below).
 //
 // Measurement — through the kiosk's own path, so that what is matched is what visitors get:
 // a KioskEngine (kiosk_engine.h) holding the one texture as the kiosk loads it (picture-derived
@@ -21,13 +21,14 @@
 // the calibration strokes are a grid (CalibrationGrid: style scrape | rub x pen speed x pen
 // pressure, spanning what visitors do). First one pair of gains ([gains]) brings the mean of the
 // grid strokes' levels (in dB, each stroke counting once) to the common targets; then the levels
-// of every grid stroke at those gains are the texture's [levels] table. One gain pair cannot
-// match every stroke: the textures' levels do not grow alike with speed and pressure (glass,
-// whose modes lie above 3 kHz, spans 17 dB from its slow firm rub to its fast light scrape; wood
-// 6 dB), so with [gains] alone the same stroke still differs by up to ~10 dB between textures.
-// The kiosk removes that stroke by stroke from the tables (stroke_gain.h: the correction is the
-// mean of the loaded textures' levels for the stroke minus the texture's own); the measurement
-// here, on one texture loaded alone, sees no correction (the mean of one table is itself).
+// of every grid stroke at those gains (mean over its places) are the texture's [levels] table.
+// One gain pair cannot match every stroke: the textures' levels do not grow alike with speed and
+// pressure (broken glass rubbed at 40 mm/s sticks and is nearly silent, at 350 mm/s it is the
+// loudest), so with [gains] alone the same grid stroke differs by up to 25 dB (sound) and 37 dB
+// (vibration) between textures. The kiosk removes that stroke by stroke from the tables
+// (stroke_gain.h: towards the median of the loaded textures' levels for the stroke); the
+// measurement here, on one texture loaded alone, sees no correction (its own table is the
+// reference).
 // The output stage applies the gain to the pickup signal before its soft limiter, so the level is
 // exactly linear in the gain while the strokes' peaks stay below the limiter's knee: then one
 // pass at 0 dB gives the answer. When a peak would reach the knee, the calibration plays the
@@ -35,12 +36,12 @@
 //
 // The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
 // transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
-// content; through the render path's smooth true height map that took +71 dB, through the
-// engine's picture-derived field (rougher, more low-frequency contact) it takes ~+49 dB, 20 dB
-// more than wood. The cap, about 10 dB above that, only stops a broken material from getting an
-// absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
-// anyway); a capped texture vibrates weaker than the others and the matching test says so. Offline
-// only (texture_generator, tests).
+// content, which between its cracks is next to nothing; measured on the sustained stroke (without
+// the landing click) its gain reaches the cap. The cap only stops a broken material from getting
+// an absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
+// anyway); a capped texture vibrates weaker than the others on average and its [levels] say so,
+// so the per-stroke correction (up to stroke_gain.h's limit) makes up the difference stroke by
+// stroke. Offline only (texture_generator, tests).
 
 #include <string>
 #include <vector>

@@ -12,7 +12,7 @@
 //   relief_mm = 0.5                      # height of the strongest ridge in the picture's field
 //   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
 //            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
-//   [levels] speeds_mm_s = [40.0, 120.0, 350.0]   pressures = [0.3, 0.6]   # optional
+//   [levels] speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.3, 0.6]   # optional
 //            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
 //            rub_haptic_rms_db = [...]   # speeds x pressures values each, speed-major: the
 //            texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
