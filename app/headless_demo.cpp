@@ -1,15 +1,20 @@
 // The headless default: a scripted visit through the kiosk engine (see headless_demo.h).
 #include "headless_demo.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
+#include <span>
 
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
+#include "kiosk/texture_levels.h"
 #include "kiosk/virtual_visit.h"
 #include "sas/version.h"
+#include "surface/loudness.h"
 #include "surface/wav_writer.h"
 #include "ui/picture_io.h"
 #include "visit_view.h"
@@ -77,6 +82,16 @@ class Visit {
     Run(0.02 + 0.1, pen);  // lifted
     Run(kTailS - 0.1);
     const std::size_t last = frames_rendered();
+    {  // The stroke's level over its pen-down span (one buffer's delay), as texture_levels.h does.
+      const double fs = driver_.sample_rate_hz();
+      const double delay_s = driver_.block_frames() / fs + stroke.hover_s + kiosk::kSettleS;
+      const auto from = first + static_cast<std::size_t>(std::llround(delay_s * fs));
+      const auto to = first + static_cast<std::size_t>(
+                                  std::llround((delay_s - kiosk::kSettleS + kStrokeS) * fs));
+      const std::span<const float> all(driver_.output());
+      levels_[name] = {surface::KWeightedLoudnessDb(all, fs, from, to, 2),
+                       surface::RmsDb(all.subspan(1), from, to, 2)};
+    }
     const std::string wav = name + ".wav";
     surface::WriteWav((fs::path(options_.out_dir) / wav).string(),
                       driver_.output().data() + first * 2, last - first, 2,
@@ -106,6 +121,8 @@ class Visit {
   VisitView& view() { return view_; }
   std::size_t voice_left() const { return driver_.voice_left(); }
   void ClearAudio() { driver_.ClearOutput(); }
+  // Loudness (LUFS, ch 1) and vibration strength (dB RMS, ch 2) of each stroke so far, by name.
+  const std::map<std::string, std::pair<double, double>>& levels() const { return levels_; }
 
  private:
   kiosk::VirtualVisit::Hooks MakeHooks() {
@@ -137,6 +154,7 @@ class Visit {
   VisitView view_;
   kiosk::VirtualVisit driver_;  // the audio loop on the virtual clock (after engine and view)
   std::string plain_;
+  std::map<std::string, std::pair<double, double>> levels_;
 };
 
 }  // namespace
@@ -198,8 +216,33 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
         kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
         stroke.tilt_deg = style.tilt_deg;
         stroke.style = style.style;
+        stroke.hover_s = 0.04;  // the hand comes in moving (the per-stroke gain knows its speed)
         report += visit.DoStroke(textures[t].key + "_" + style.name, stroke);
         ++row;
+      }
+    }
+    // The same stroke on every texture: how far apart their levels are (kiosk/stroke_gain.h).
+    if (!options.quiet) {
+      for (const auto& style : styles) {
+        double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+        std::string each;
+        for (const auto& texture : textures) {
+          const auto found = visit.levels().find(texture.key + "_" + style.name);
+          if (found == visit.levels().end()) continue;
+          char text[96];
+          std::snprintf(text, sizeof text, "%s%s %.1f/%.1f", each.empty() ? "" : ", ",
+                        texture.key.c_str(), found->second.first, found->second.second);
+          each += text;
+          const double level[2] = {found->second.first, found->second.second};
+          for (int c = 0; c < 2; ++c) {
+            lo[c] = std::min(lo[c], level[c]);
+            hi[c] = std::max(hi[c], level[c]);
+          }
+        }
+        std::fprintf(out,
+                     "  the same %s stroke on the %zu textures: loudness within %.1f dB, "
+                     "vibration within %.1f dB (LUFS/dB RMS: %s)\n",
+                     style.name, textures.size(), hi[0] - lo[0], hi[1] - lo[1], each.c_str());
       }
     }
     // Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).

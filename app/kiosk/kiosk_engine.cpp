@@ -40,6 +40,11 @@ constexpr double kPopImpulseNs = 0.002;
 // saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
 constexpr double kBubblePressMaxForceN = 4.0;
 constexpr double kCountersSaveIntervalS = 10.0;
+// Per-stroke gain ramps (stroke_gain.h): while a stroke plays, over 20 ms (no audible step); for
+// the first kLandingWindowS of a stroke over 1 ms, so the landing click gets the stroke's gain.
+constexpr double kStrokeRampS = 0.02;
+constexpr double kLandingRampS = 0.001;
+constexpr double kLandingWindowS = 0.01;
 
 std::vector<std::string> DataDirs(const std::string& sub) {
   std::vector<std::string> dirs;
@@ -133,6 +138,20 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
       std::find(texture_keys_.begin(), texture_keys_.end(), options_.config.default_texture);
   default_texture_ =
       found == texture_keys_.end() ? 0 : static_cast<int>(found - texture_keys_.begin());
+
+  std::vector<const surface::StrokeLevelTable*> tables;
+  for (const auto& texture : textures_) {
+    tables.push_back(texture.loaded.file.levels ? &*texture.loaded.file.levels : nullptr);
+  }
+  stroke_gains_ = StrokeGainMap(tables);
+  if (stroke_gains_.matched_textures() > 0 &&
+      stroke_gains_.matched_textures() < static_cast<int>(textures_.size())) {
+    platform::DefaultLogger().Warn(
+        "textures", std::to_string(textures_.size() -
+                                   static_cast<std::size_t>(stroke_gains_.matched_textures())) +
+                        " texture(s) without a matching [levels] table: their strokes are not "
+                        "loudness-matched stroke by stroke (texture.toml, regenerate_textures)");
+  }
 
   SessionConfig session;
   session.texture_count = static_cast<int>(textures_.size());
@@ -360,6 +379,31 @@ void KioskEngine::OnPen(const PenInput& pen) {
   }
   if (pen.style) command.style = *pen.style;
 
+  // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
+  // the pen plays; held while the pen is up. The speed counts hover reports too (touch-down).
+  {
+    const double dt_s =
+        have_last_pen_ ? static_cast<double>(pen.time_ns - last_pen_.time_ns) * 1e-9 : 0.0;
+    const bool recent = have_last_pen_ && dt_s > 0.0 && dt_s <= kMaxReportGapS;
+    const double speed_mm_s =
+        recent ? std::hypot(x_m - last_fx_, y_m - last_fy_) / dt_s * 1e3 : 0.0;
+    stroke_.Update(command.tip_down, recent, speed_mm_s, pressure, dt_s);
+  }
+  if (command.tip_down && !(have_last_pen_ && last_pen_.tip_down)) stroke_down_ns_ = pen.time_ns;
+  if (command.tip_down && requested_slot_ >= 0) {
+    stroke_style_ = command.style;
+    stroke_correction_ = CorrectionFor(stroke_texture_);
+    // Landing: the new stroke's gain must be in place when its landing click (the loudest part
+    // of a slow stroke) sounds, one buffer from now, so it ramps over kLandingRampS; the scene
+    // only rings out the last stroke's tail meanwhile. Then over the scene's 20 ms.
+    const bool landing =
+        static_cast<double>(pen.time_ns - stroke_down_ns_) * 1e-9 < kLandingWindowS;
+    slots_[static_cast<std::size_t>(requested_slot_)].scene.SetStrokeGains(
+        std::pow(10.0, stroke_correction_.sound_db / 20.0),
+        std::pow(10.0, stroke_correction_.haptic_db / 20.0),
+        landing ? kLandingRampS : kStrokeRampS);
+  }
+
   // Bubble wrap: a hard enough press pops the bubble under the tip (a burst through the contact).
   if (command.tip_down && !choice.voice && choice.texture == bubble_texture_) {
     auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
@@ -554,12 +598,17 @@ void KioskEngine::ShowSurface(const SurfaceChoice& choice) {
   if (choice.voice) {
     auto field = voice_.Recall(kVoiceSlot);
     if (!field) return;
-    SwitchTo(std::move(field), voice_material_, {});
+    SwitchTo(std::move(field), voice_material_, {}, -1);
     return;
   }
   auto& texture = textures_[static_cast<std::size_t>(choice.texture)];
   auto field = texture.loaded.bubbles ? texture.loaded.bubbles->field() : texture.loaded.field;
-  SwitchTo(std::move(field), texture.material, texture.loaded.file.gains);
+  SwitchTo(std::move(field), texture.material, texture.loaded.file.gains, choice.texture);
+}
+
+StrokeCorrection KioskEngine::CorrectionFor(int texture) const {
+  if (!stroke_.valid()) return {};
+  return stroke_gains_.Correction(texture, stroke_style_, stroke_.speed_mm_s(), stroke_.pressure());
 }
 
 int KioskEngine::FreeSlot() const {
@@ -572,7 +621,8 @@ int KioskEngine::FreeSlot() const {
 }
 
 void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
-                           const Material& material, const surface::TextureGains& gains) {
+                           const Material& material, const surface::TextureGains& gains,
+                           int texture) {
   const int slot = FreeSlot();
   if (slot < 0) return;
   auto& target = slots_[static_cast<std::size_t>(slot)];
@@ -582,6 +632,11 @@ void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
       KioskOutputParams(options_.config, gains, ambient_gain_db_, low_vibration_);
   ambient_gain_applied_db_ = ambient_gain_db_;
   target.field = field;
+  // The new scene starts at the correction for the last stroke (Prepare takes it at once).
+  stroke_texture_ = texture;
+  stroke_correction_ = CorrectionFor(texture);
+  target.scene.SetStrokeGains(std::pow(10.0, stroke_correction_.sound_db / 20.0),
+                              std::pow(10.0, stroke_correction_.haptic_db / 20.0));
   target.scene.Prepare(material.params, output, target.field->View());
   current_field_ = std::move(field);
   current_relief_m_ = ReliefM(*current_field_);

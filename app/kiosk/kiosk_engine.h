@@ -22,6 +22,10 @@
 // The old scene gets a pen-up and fades out over cross_fade_s while the new one fades in, so a
 // switch never clicks. Bubble pops flatten the field; the flattened field becomes the scene's
 // surface through the same switch once the pen is lifted.
+// Per-stroke loudness matching (stroke_gain.h): each pen sample updates the smoothed stroke
+// (speed, pressure, style) and hands the texture's correction for it to the scene the pen plays
+// (Scene::SetStrokeGains: ramped on the audio thread); a newly prepared scene starts at the
+// correction for the last stroke.
 
 #include <array>
 #include <atomic>
@@ -35,6 +39,7 @@
 #include "kiosk/kiosk_config.h"
 #include "kiosk/material_file.h"
 #include "kiosk/session.h"
+#include "kiosk/stroke_gain.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
 #include "platform/common/spsc_queue.h"
@@ -155,6 +160,9 @@ class KioskEngine final : public platform::AudioRenderer {
   const KioskConfig& config() const { return options_.config; }
   const std::string& cues_dir() const { return cues_dir_; }
   int cues_loaded() const;
+  // The per-stroke correction last handed to the scene under the pen (dB).
+  StrokeCorrection stroke_correction() const { return stroke_correction_; }
+  const StrokeGainMap& stroke_gains() const { return stroke_gains_; }
   // Holds a voice take in RAM for a check (headless run, tests): the same path as a recording.
   RecordingOutcome AcceptRecording(std::int64_t now_ns, std::vector<float> samples);
 
@@ -184,7 +192,8 @@ class KioskEngine final : public platform::AudioRenderer {
   void ApplyActions(std::int64_t now_ns, const std::vector<SessionAction>& actions);
   void ShowSurface(const SurfaceChoice& choice);
   void SwitchTo(std::shared_ptr<const surface::HeightField> field, const Material& material,
-                const surface::TextureGains& gains);
+                const surface::TextureGains& gains, int texture);
+  StrokeCorrection CorrectionFor(int texture) const;
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void Speak(Cue cue, int texture);
@@ -243,6 +252,12 @@ class KioskEngine final : public platform::AudioRenderer {
   PenInput last_pen_{};
   double last_fx_ = 0.0, last_fy_ = 0.0;
   double dir_x_ = 1.0, dir_y_ = 0.0;
+  StrokeGainMap stroke_gains_;
+  StrokeTracker stroke_;
+  synth::ProbeStyle stroke_style_ = synth::ProbeStyle::kScrape;
+  std::int64_t stroke_down_ns_ = 0;  // when the pen last touched down
+  int stroke_texture_ = -1;          // texture of the scene the pen plays (-1: the voice)
+  StrokeCorrection stroke_correction_;
   std::atomic<std::uint64_t> dropped_{0};
 
   // Audio side (the audio thread only, except the atomics).

@@ -1,9 +1,9 @@
 #pragma once
 // Loudness and vibration-strength matching of the kiosk textures (issue 7, "noisy room"): the
 // same stroke on any of the four textures should sound equally loud and vibrate equally strongly
-// (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] in its
-// texture.toml are the correction; this file measures them and computes them (what one pair of
-// gains per texture can and cannot match: "Calibration" below).
+// (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] and [levels]
+// in its texture.toml are what the kiosk corrects with (stroke_gain.h); this file measures and
+// computes them ("Calibration" below).
 //
 // Measurement — through the kiosk's own path, so that what is matched is what visitors get:
 // a KioskEngine (kiosk_engine.h) holding the one texture as the kiosk loads it (picture-derived
@@ -12,20 +12,23 @@
 // screen with the kiosk's pen -> probe mapping. It plays the visitor strokes below one after the
 // other, with the pen lifted between them, at the texture's gains `gains` plus `global` gains (the
 // kiosk configuration's gains.sound_gain_db / haptic_gain_db, default 0). Over each stroke's
-// pen-down span (shifted by the engine's one-buffer pen-to-sound delay):
+// pen-down span from kSettleS after touch-down (the sustained stroke, without the landing click;
+// shifted by the engine's one-buffer pen-to-sound delay):
 //   sound   channel 1, BS.1770 K-weighted loudness (LUFS, ungated) — surface/loudness.h says why
 //   haptic  channel 2, RMS in dBFS — the output stage has already band-limited it to 40–800 Hz
 //
-// Calibration: one pair of gains per texture for all the strokes, computed for each texture on its
-// own (regenerating one texture must not depend on the others): the gains bring the mean of its
-// strokes' levels (in dB, each stroke counting once) to the common target. Matching every stroke's
-// level across the textures in the least-squares sense comes down to exactly that per texture.
-// It cannot match every stroke within 1 dB: the textures' levels do not grow alike with speed
-// and pressure (glass, whose modes lie above 3 kHz, spans 17 dB from its slow firm rub to its fast
-// light scrape; wood 6 dB), so after calibration the same stroke still differs by up to ~10 dB
-// between two textures (sound and vibration; measured by tests/kiosk/test_texture_levels.cpp,
-// figures in README "Textures, loudness matching and spoken cues"), while the mean over the
-// strokes — what a visitor's few strokes on a texture add up to — agrees within 0.05 dB.
+// Calibration, per texture on its own (regenerating one texture must not depend on the others):
+// the calibration strokes are a grid (CalibrationGrid: style scrape | rub x pen speed x pen
+// pressure, spanning what visitors do). First one pair of gains ([gains]) brings the mean of the
+// grid strokes' levels (in dB, each stroke counting once) to the common targets; then the levels
+// of every grid stroke at those gains (mean over its places) are the texture's [levels] table.
+// One gain pair cannot match every stroke: the textures' levels do not grow alike with speed and
+// pressure (broken glass rubbed at 40 mm/s sticks and is nearly silent, at 350 mm/s it is the
+// loudest), so with [gains] alone the same grid stroke differs by up to 25 dB (sound) and 37 dB
+// (vibration) between textures. The kiosk removes that stroke by stroke from the tables
+// (stroke_gain.h: towards the median of the loaded textures' levels for the stroke); the
+// measurement here, on one texture loaded alone, sees no correction (its own table is the
+// reference).
 // The output stage applies the gain to the pickup signal before its soft limiter, so the level is
 // exactly linear in the gain while the strokes' peaks stay below the limiter's knee: then one
 // pass at 0 dB gives the answer. When a peak would reach the knee, the calibration plays the
@@ -33,12 +36,12 @@
 //
 // The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
 // transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
-// content; through the render path's smooth true height map that took +71 dB, through the
-// engine's picture-derived field (rougher, more low-frequency contact) it takes ~+49 dB, 20 dB
-// more than wood. The cap, about 10 dB above that, only stops a broken material from getting an
-// absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
-// anyway); a capped texture vibrates weaker than the others and the matching test says so. Offline
-// only (texture_generator, tests).
+// content, which between its cracks is next to nothing; measured on the sustained stroke (without
+// the landing click) its gain reaches the cap. The cap only stops a broken material from getting
+// an absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
+// anyway); a capped texture vibrates weaker than the others on average and its [levels] say so,
+// so the per-stroke correction (up to stroke_gain.h's limit) makes up the difference stroke by
+// stroke. Offline only (texture_generator, tests).
 
 #include <string>
 #include <vector>
@@ -61,16 +64,53 @@ struct VisitorStroke {
   PenStroke pen;     // screen fractions on the kiosk's 1920 x 1080 screen
 };
 
-// The calibration strokes: scrape (pen upright) and rub (pen tilted 50°, a 5 mm wide probe), each
-// at a slow firm, a medium and a fast light stroke (40–350 mm/s, pressure 0.3–0.6: below the
-// bubbles' pop force, so bubble wrap is stroked, not popped), in different directions across
-// different parts of the picture.
-const std::vector<VisitorStroke>& CalibrationStrokes();
+// The calibration grid: pen speeds (mm/s) and pressures, for scrape (pen upright) and rub (pen
+// tilted ~50°, a 5 mm wide probe). 40–350 mm/s spans slow to fast strokes; pressure 0.3–0.6 stays
+// below the bubbles' pop force, so bubble wrap is stroked, not popped.
+// Each grid point is stroked at `places` places on the picture, in different directions; its level
+// is the mean (dB) over them: where a stroke runs changes its level too (broken glass: whether it
+// crosses cracks), and the table is meant to hold the texture's typical level for the stroke.
+struct CalibrationGrid {
+  std::vector<double> speeds_mm_s = {40.0, 80.0, 160.0, 350.0};
+  std::vector<double> pressures = {0.3, 0.6};
+  int places = 2;
+};
+inline constexpr double kScrapeTiltDeg = 5.0;  // pen nearly upright: a 0.8 mm point, scrape
+inline constexpr double kRubTiltDeg = 50.0;    // pen tilted: a 5 mm wide probe, rub
+
+// The grid's strokes: for each grid point in the order of surface::StrokeLevelTable
+// ([style][speed][pressure]) `places` strokes at places 0, 1, 2, ... (PlacedStroke), each
+// kStrokeS long after kHoverS of hover.
+std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid);
+const std::vector<VisitorStroke>& CalibrationStrokes();  // the default grid's
+inline constexpr double kStrokeS = 0.4;
+// A stroke's level is measured over its pen-down span from this long after touch-down: the
+// sustained stroke, not the landing click (texture_levels.cpp says why).
+inline constexpr double kSettleS = 0.1;
+
+// A stroke at place `place` (0, 1, 2, ...: spread over the screen, every place in a new direction,
+// deterministic): the calibration uses the first places, tests take others.
+VisitorStroke PlacedStroke(const char* name, int place, double speed_mm_s, double pressure,
+                           double tilt_deg);
+// The mean (dB) of each run of `places` consecutive strokes' levels (peaks: the largest).
+std::vector<StrokeLevels> MeanOverPlaces(const std::vector<StrokeLevels>& levels, int places);
+// Each stroke comes in hovering for this long (PenStroke::hover_s): the kiosk knows its speed at
+// touch-down, so the landing click gets the stroke's correction too.
+inline constexpr double kHoverS = 0.04;
+
+// A visitor stroke of kStrokeS (after kHoverS of hover) from (x0, y0) (screen fractions) at
+// `angle_deg` (0 = rightwards, positive = down the screen) and `speed_mm_s` on the kiosk's screen
+// at the display's pixel pitch.
+VisitorStroke MakeStroke(const char* name, double x0, double y0, double angle_deg,
+                         double speed_mm_s, double pressure, double tilt_deg);
 
 struct LevelMeasurement {
   double global_sound_gain_db = 0.0;  // on top of the texture's gains
   double global_haptic_gain_db = 0.0;
   std::vector<VisitorStroke> strokes = CalibrationStrokes();
+  // Further textures loaded into the same engine, as in the kiosk (their [levels] tables join the
+  // per-stroke reference); the measured texture is the engine's default one.
+  std::vector<std::string> other_textures;
 };
 
 // The calibration targets for the strokes' mean at the texture gains only (global gains 0 dB).
@@ -84,7 +124,7 @@ inline constexpr double kMaxHapticGainDb = 60.0;
 
 // Plays `measurement.strokes` on the texture file `texture_toml` through the kiosk engine with
 // texture gains `gains` (not the ones in the file: the caller chooses) and returns the levels of
-// each stroke, in order. Throws on any problem.
+// each stroke, in order (from kSettleS after touch-down). Throws on any problem.
 std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
                                               const surface::TextureGains& gains,
                                               const LevelMeasurement& measurement = {});
@@ -99,11 +139,16 @@ struct StrokeSetLevels {
 };
 StrokeSetLevels Summarise(const std::vector<StrokeLevels>& strokes);
 
-// The texture gains that bring the strokes' mean levels to the targets (within 0.05 dB; the haptic
-// gain at most kMaxHapticGainDb), rounded to 0.01 dB.
-surface::TextureGains CalibrateTextureGains(const std::string& texture_toml,
-                                            double target_sound_lufs = kTargetSoundLufs,
-                                            double target_haptic_rms_db = kTargetHapticRmsDb,
-                                            const LevelMeasurement& measurement = {});
+// The texture gains that bring the grid strokes' mean levels to the targets (within 0.05 dB; the
+// haptic gain at most kMaxHapticGainDb), rounded to 0.01 dB, and the grid strokes' levels at those
+// gains (0.01 dB). `texture_toml` is measured alone; its own [levels] must be absent.
+struct TextureCalibration {
+  surface::TextureGains gains;
+  surface::StrokeLevelTable levels;
+};
+TextureCalibration CalibrateTexture(const std::string& texture_toml,
+                                    double target_sound_lufs = kTargetSoundLufs,
+                                    double target_haptic_rms_db = kTargetHapticRmsDb,
+                                    const CalibrationGrid& grid = {});
 
 }  // namespace sas::kiosk

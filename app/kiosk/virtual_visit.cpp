@@ -8,11 +8,13 @@ namespace sas::kiosk {
 
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px) {
   return [stroke, t0_s, width_px, height_px](double t_s) -> std::optional<PenInput> {
-    const double u = std::clamp((t_s - t0_s) / stroke.duration_s, 0.0, 1.0);
+    const double since_touch_s = t_s - t0_s - stroke.hover_s;
+    const double u =
+        std::clamp(since_touch_s / stroke.duration_s, -stroke.hover_s / stroke.duration_s, 1.0);
     PenInput sample;
     sample.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * u) * width_px;
     sample.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * u) * height_px;
-    sample.tip_down = t_s - t0_s < stroke.duration_s;
+    sample.tip_down = since_touch_s >= 0.0 && since_touch_s < stroke.duration_s;
     sample.pressure = sample.tip_down ? stroke.pressure : 0.0;
     sample.tilt_deg = stroke.tilt_deg;
     sample.has_tilt = true;

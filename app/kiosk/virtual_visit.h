@@ -35,10 +35,15 @@ struct PenStroke {
   double pressure = 0.7;                          // 0..1
   double tilt_deg = 0.0;                          // upright = scrape, tilted = rub (gesture.h)
   std::optional<synth::ProbeStyle> style;         // forces a style (roll)
+  // The pen hovers (tip up, in the tablet's range) for this long before touching down, moving
+  // along the stroke's line at its speed, as a hand does coming in for a stroke: the kiosk then
+  // knows the stroke's speed when the tip lands (KioskEngine's per-stroke gain).
+  double hover_s = 0.0;
 };
 
 // The pen reports of `stroke` starting at `t0_s` on a screen of width x height pixels: a pen
-// (has_tilt), tip down while t - t0 < duration, then lifted at the end point with pressure 0.
+// (has_tilt), hovering until t0 + hover_s, tip down for duration_s from then, then lifted at the
+// end point with pressure 0.
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px);
 
 // The recorder settings the configuration asks for (the live kiosk's microphone uses the same).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <set>
 
 #include "surface/image_loader.h"  // LoadError, ReadFileBytes
@@ -75,6 +76,59 @@ class Checker {
   std::string path_;
 };
 
+// An array of numbers within [lo, hi]; `count` > 0: exactly that many.
+std::vector<double> Numbers(const Checker& check, const toml::table& table, std::string_view key,
+                            double lo, double hi, std::size_t count) {
+  const std::string name = "levels." + std::string(key);
+  const toml::node& node = check.Need(table, table.source(), "levels.", key);
+  if (!node.is_array()) check.Fail(node.source(), name, "must be an array of numbers");
+  const toml::array& array = *node.as_array();
+  if (count > 0 && array.size() != count) {
+    check.Fail(node.source(), name,
+               "must hold " + std::to_string(count) + " numbers (styles x speeds x pressures)");
+  }
+  if (array.empty() || array.size() > 64)
+    check.Fail(node.source(), name, "must hold 1..64 numbers");
+  std::vector<double> values;
+  for (const toml::node& element : array) {
+    if (!element.is_number()) check.Fail(element.source(), name, "must be an array of numbers");
+    const double value = *element.value<double>();
+    if (!(value >= lo && value <= hi)) {
+      check.Fail(element.source(), name,
+                 "value " + std::to_string(value) + " outside [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
+  check.OnlyKeys(table, "levels.",
+                 {"speeds_mm_s", "pressures", "scrape_sound_lufs", "scrape_haptic_rms_db",
+                  "rub_sound_lufs", "rub_haptic_rms_db"});
+  StrokeLevelTable levels;
+  levels.speeds_mm_s = Numbers(check, table, "speeds_mm_s", 1.0, 5000.0, 0);
+  levels.pressures = Numbers(check, table, "pressures", 0.01, 1.0, 0);
+  for (const auto* axis : {&levels.speeds_mm_s, &levels.pressures}) {
+    if (std::adjacent_find(axis->begin(), axis->end(), std::greater_equal<>()) != axis->end()) {
+      const char* key = axis == &levels.speeds_mm_s ? "speeds_mm_s" : "pressures";
+      check.Fail(table.get(key)->source(), std::string("levels.") + key,
+                 "must be strictly increasing");
+    }
+  }
+  const std::size_t per_style = levels.speeds_mm_s.size() * levels.pressures.size();
+  for (const char* style : {"scrape", "rub"}) {
+    for (const bool sound : {true, false}) {
+      const std::string key = std::string(style) + (sound ? "_sound_lufs" : "_haptic_rms_db");
+      const auto values = Numbers(check, table, key, -200.0, 20.0, per_style);
+      auto& into = sound ? levels.sound_lufs : levels.haptic_rms_db;
+      into.insert(into.end(), values.begin(), values.end());
+    }
+  }
+  return levels;
+}
+
 }  // namespace
 
 TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
@@ -89,7 +143,7 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
   const toml::source_region top{{1, 1}, {1, 1}, nullptr};
   check.OnlyKeys(root, "",
                  {"name", "description", "material", "picture", "height_map", "height_scale_mm",
-                  "relief_mm", "gains", "probe", "bubbles"});
+                  "relief_mm", "gains", "levels", "probe", "bubbles"});
   TextureFile t;
   t.name = check.String(root, top, "", "name");
   t.description = check.String(root, top, "", "description");
@@ -123,6 +177,11 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
       check.Number(gains, gains.source(), "gains.", "sound_gain_db", -60.0, 80.0);
   t.gains.haptic_gain_db =
       check.Number(gains, gains.source(), "gains.", "haptic_gain_db", -60.0, 80.0);
+
+  if (const toml::node* node = root.get("levels")) {
+    if (!node->is_table()) check.Fail(node->source(), "levels", "must be a table [levels]");
+    t.levels = ParseLevels(check, *node->as_table());
+  }
 
   const toml::table& probe = check.Table(root, top, "probe");
   check.OnlyKeys(probe, "probe.", {"width_mm", "penetration_mm", "style"});

@@ -12,6 +12,10 @@
 //   relief_mm = 0.5                      # height of the strongest ridge in the picture's field
 //   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
 //            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
+//   [levels] speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.3, 0.6]   # optional
+//            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
+//            rub_haptic_rms_db = [...]   # speeds x pressures values each, speed-major: the
+//            texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
 //   origin_y_px
@@ -21,6 +25,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "surface/bubble_wrap.h"
 #include "synth/probe_command.h"
@@ -30,6 +35,26 @@ namespace sas::surface {
 struct TextureGains {
   double sound_gain_db = 0.0;
   double haptic_gain_db = 0.0;
+};
+
+// The texture's loudness (ch 1, LUFS) and vibration strength (ch 2, dB RMS) at its [gains] over a
+// grid of strokes: style (scrape, rub) x pen speed x pen pressure, measured by the texture
+// generator (kiosk/texture_levels.h); the kiosk's per-stroke gains are computed from it
+// (kiosk/stroke_gain.h). Values are [style][speed][pressure], flattened in that order.
+struct StrokeLevelTable {
+  static constexpr int kStyles = 2;  // 0 scrape, 1 rub
+  std::vector<double> speeds_mm_s;   // strictly increasing, > 0
+  std::vector<double> pressures;     // strictly increasing, in (0, 1]
+  std::vector<double> sound_lufs;    // kStyles x speeds x pressures
+  std::vector<double> haptic_rms_db;
+
+  std::size_t Index(int style, std::size_t speed, std::size_t pressure) const {
+    return (static_cast<std::size_t>(style) * speeds_mm_s.size() + speed) * pressures.size() +
+           pressure;
+  }
+  bool SameGrid(const StrokeLevelTable& other) const {
+    return speeds_mm_s == other.speeds_mm_s && pressures == other.pressures;
+  }
 };
 
 struct TextureProbeDefaults {
@@ -52,6 +77,7 @@ struct TextureFile {
   double height_scale_mm = 1.0;
   double relief_mm = 0.5;
   TextureGains gains;
+  std::optional<StrokeLevelTable> levels;  // absent: no per-stroke matching for this texture
   TextureProbeDefaults probe;
   std::optional<BubbleSettings> bubbles;  // bubble wrap only
 };

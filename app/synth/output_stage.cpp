@@ -62,18 +62,40 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
 
 void OutputStage::Reset() {
   for (auto& s : sections_) s.s1 = s.s2 = 0.0;
-  // Silent after a reset, so the trim may jump to where the mode says.
-  trim_ = trim_target_ = low_vibration_ ? low_vibration_gain_ : 1.0;
+  // Silent after a reset, so the trim and the stroke gains may jump to where they are asked to be.
+  trim_ = trim_target_ = (low_vibration_ ? low_vibration_gain_ : 1.0) * stroke_haptic_;
   trim_step_ = 0.0;
+  stroke_sound_ = stroke_sound_target_;
+  stroke_sound_step_ = 0.0;
+}
+
+void OutputStage::StartTrimRamp(double samples) {
+  const double target = (low_vibration_ ? low_vibration_gain_ : 1.0) * stroke_haptic_;
+  if (target == trim_target_) return;
+  trim_target_ = target;
+  trim_step_ = (trim_target_ - trim_) / samples;
+  if (trim_step_ == 0.0) trim_ = trim_target_;
 }
 
 void OutputStage::SetLowVibration(bool on) {
   low_vibration_ = on;
-  const double target = on ? low_vibration_gain_ : 1.0;
-  if (target == trim_target_) return;
-  trim_target_ = target;
-  trim_step_ = (trim_target_ - trim_) / ramp_samples_;
-  if (trim_step_ == 0.0) trim_ = trim_target_;
+  StartTrimRamp(ramp_samples_);
+}
+
+void OutputStage::SetStrokeGains(double sound, double haptic, double ramp_s) {
+  const double samples = std::max(
+      1.0, std::clamp(std::isfinite(ramp_s) ? ramp_s : kLowVibrationRampS, kMinStrokeRampS, 1.0) *
+               ramp_samples_ / kLowVibrationRampS);
+  const auto clamp = [](double g) {
+    return std::isfinite(g) ? std::clamp(g, 0.0, kMaxStrokeGain) : 1.0;
+  };
+  stroke_haptic_ = clamp(haptic);
+  StartTrimRamp(samples);
+  const double target = clamp(sound);
+  if (target == stroke_sound_target_) return;
+  stroke_sound_target_ = target;
+  stroke_sound_step_ = (stroke_sound_target_ - stroke_sound_) / samples;
+  if (stroke_sound_step_ == 0.0) stroke_sound_ = stroke_sound_target_;
 }
 
 double OutputStage::SoftLimit(double x) {

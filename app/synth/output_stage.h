@@ -2,17 +2,23 @@
 // Output stage (DESIGN.md §1): channel 1 drives the speaker, channel 2 the vibrotactile
 // transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
 // the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
-//   ch 1: NaN/Inf -> 0, × sound_gain, soft limiter
+//   ch 1: NaN/Inf -> 0, × sound_gain × stroke sound gain, soft limiter
 //   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 16th-order
 //         Butterworth low-pass, RBJ biquads: white noise keeps < -40 dB of its energy above 1 kHz),
-//         × haptic_gain × low-vibration trim, soft limiter scaled to the haptic ceiling
+//         × haptic_gain × low-vibration trim × stroke haptic gain, soft limiter scaled to the
+//         haptic ceiling
 //         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
 //         haptic_enabled is false.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
 // Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
 // kLowVibrationRampS (no click on the transducer) and then holds the exact value.
+// Stroke gains (the kiosk's per-stroke loudness matching, kiosk/stroke_gain.h): two linear factors
+// in [0, kMaxStrokeGain] set at run time; a change ramps linearly over the time asked for
+// (kLowVibrationRampS by default, kMinStrokeRampS at least; on the transducer the two multiply into
+// one ramped factor), Reset() jumps to them.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -35,6 +41,8 @@ class OutputStage {
  public:
   static constexpr double kKnee = 0.5;
   static constexpr double kLowVibrationRampS = 0.02;
+  static constexpr double kMaxStrokeGain = 10.0;  // +20 dB
+  static constexpr double kMinStrokeRampS = 0.001;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();
@@ -44,7 +52,13 @@ class OutputStage {
   // One frame: writes the sound and haptic samples for input `pickup`.
   void Process(double pickup, float* sound, float* haptic) {
     if (!std::isfinite(pickup)) pickup = 0.0;
-    *sound = static_cast<float>(SoftLimit(sound_gain_ * pickup));
+    if (stroke_sound_ != stroke_sound_target_) {
+      stroke_sound_ += stroke_sound_step_;
+      if ((stroke_sound_step_ > 0.0) == (stroke_sound_ >= stroke_sound_target_)) {
+        stroke_sound_ = stroke_sound_target_;
+      }
+    }
+    *sound = static_cast<float>(SoftLimit(sound_gain_ * stroke_sound_ * pickup));
     if (!haptic_enabled_) {
       *haptic = 0.0f;
       return;
@@ -66,6 +80,17 @@ class OutputStage {
   void SetLowVibration(bool on);
   bool low_vibration() const { return low_vibration_; }
 
+  // Real-time safe: starts the ramps to the stroke gains (linear, clamped to [0, kMaxStrokeGain];
+  // non-finite: 1).
+  void SetStrokeGains(double sound, double haptic, double ramp_s = kLowVibrationRampS);
+  double stroke_sound_gain() const { return stroke_sound_target_; }
+  double stroke_haptic_gain() const { return stroke_haptic_; }
+  // The largest stroke gain (current or ramp target, at least 1): bounds the output's gain over
+  // the pickup until the next SetStrokeGains (for the scene's silence and skip bounds).
+  double StrokeGainBound() const {
+    return std::max({1.0, stroke_sound_, stroke_sound_target_, trim_, trim_target_});
+  }
+
   // Largest magnitude held in the filter state (for idle detection).
   double FilterActivity() const;
 
@@ -82,7 +107,13 @@ class OutputStage {
   double trim_ = 1.0;
   double trim_target_ = 1.0;
   double trim_step_ = 0.0;
+  double stroke_sound_ = 1.0;  // ramped sound factor, its target and step
+  double stroke_sound_target_ = 1.0;
+  double stroke_sound_step_ = 0.0;
+  double stroke_haptic_ = 1.0;  // requested haptic factor (part of the trim's target)
   bool haptic_enabled_ = true;
+
+  void StartTrimRamp(double samples);
 };
 
 }  // namespace sas::synth

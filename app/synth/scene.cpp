@@ -77,6 +77,11 @@ struct Scene::Impl {
   OutputStage output{};
   // Written by the control thread (Scene::SetLowVibration), read once per block by Process().
   std::atomic<bool> low_vibration{false};
+  // Written by the control thread (Scene::SetStrokeGains), read once per block by Process().
+  std::atomic<double> stroke_sound_gain{1.0};
+  std::atomic<double> stroke_haptic_gain{1.0};
+  std::atomic<double> stroke_ramp_s{0.02};
+  double stroke_bound = 1.0;  // OutputStage::StrokeGainBound() for this block
   SceneSkips skips{};
   bool friction_skipped = false;  // the last sample left friction out (relaxed_friction)
   bool idle = false;              // skipping the kernel (SceneSkips::idle_blocks)
@@ -113,7 +118,10 @@ struct Scene::Impl {
     probe = ProbeDynamics{};
     // A reset scene is silent: the transducer trim may jump to the requested mode at once.
     output.SetLowVibration(low_vibration.load(std::memory_order_relaxed));
+    output.SetStrokeGains(stroke_sound_gain.load(std::memory_order_relaxed),
+                          stroke_haptic_gain.load(std::memory_order_relaxed));
     output.Reset();
+    stroke_bound = output.StrokeGainBound();
     gesture = ProbeCommand{};
     x_m = y_m = 0.0;
     step_x_m = step_y_m = 0.0;
@@ -132,7 +140,7 @@ struct Scene::Impl {
   bool Silent() const {
     if (probe.active) return false;
     constexpr double kThreshold = 0.5 * kIdleSilence;
-    return modes.PickupAmplitudeBound() * output_gain < kThreshold &&
+    return modes.PickupAmplitudeBound() * output_gain * stroke_bound < kThreshold &&
            output.FilterActivity() < kThreshold;
   }
 
@@ -151,7 +159,7 @@ struct Scene::Impl {
                       (config.impact.enabled ? std::max(probe.normal_n, 0.0) : drive.push_n);
     const double z = std::fabs(probe.bristle_m);
     if (z > 1e-9 * fm.c_ba * fm.mu_d * fn / fm.sigma0) return false;
-    if (fm.sigma0 * z * release_gain > kFrictionSkipAmplitude) return false;
+    if (fm.sigma0 * z * release_gain * stroke_bound > kFrictionSkipAmplitude) return false;
     // Σ (v² + ω0² (q - q_static)²): squared contact-velocity amplitudes of the modes.
     const double load = probe.friction_n - probe.normal_n;  // force on the resonator
     double sum = 0.0;
@@ -167,7 +175,7 @@ struct Scene::Impl {
                                                          config.period_s / config.probe_mass_kg;
     }
     // Σ amplitudes <= sqrt(count · Σ squares) (Cauchy–Schwarz); times the largest pickup gain.
-    const double limit = kFrictionSkipAmplitude / (max_abs_gain + 1e-300);
+    const double limit = kFrictionSkipAmplitude / (max_abs_gain * stroke_bound + 1e-300);
     return static_cast<double>(modes.count + 1) * (sum + probe_motion * probe_motion) <=
            limit * limit;
   }
@@ -361,6 +369,13 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
       low != s.output.low_vibration()) {
     s.output.SetLowVibration(low);
   }
+  if (const double sound = s.stroke_sound_gain.load(std::memory_order_relaxed),
+      haptic = s.stroke_haptic_gain.load(std::memory_order_relaxed);
+      sound != s.output.stroke_sound_gain() || haptic != s.output.stroke_haptic_gain()) {
+    s.output.SetStrokeGains(sound, haptic, s.stroke_ramp_s.load(std::memory_order_relaxed));
+    if (s.idle) s.output.Reset();  // silent (its state is zero): the gains may jump
+  }
+  s.stroke_bound = s.output.StrokeGainBound();
   int next = 0;
   if (commands == nullptr) command_count = 0;
   for (int f = 0; f < frames; ++f) {
@@ -398,6 +413,12 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
 
 void Scene::SetLowVibration(bool on) {
   impl_->low_vibration.store(on, std::memory_order_relaxed);
+}
+
+void Scene::SetStrokeGains(double sound, double haptic, double ramp_s) {
+  impl_->stroke_ramp_s.store(ramp_s, std::memory_order_relaxed);
+  impl_->stroke_sound_gain.store(sound, std::memory_order_relaxed);
+  impl_->stroke_haptic_gain.store(haptic, std::memory_order_relaxed);
 }
 
 bool Scene::low_vibration() const {

@@ -96,6 +96,15 @@ class Scene {
   void SetLowVibration(bool on);
   bool low_vibration() const;
 
+  // Per-stroke loudness-matching gains (linear factors on ch 1 and ch 2, clamped to
+  // [0, OutputStage::kMaxStrokeGain]; the kiosk's stroke gains, kiosk/stroke_gain.h), applied
+  // before the limiters. Callable from any thread while another runs Process(): relaxed atomic
+  // stores that Process() reads once per block; a change then ramps linearly over `ramp_s`
+  // (default 20 ms; at least OutputStage::kMinStrokeRampS), so it never steps. Reset() and
+  // Prepare() take the values last set at once (the scene is silent); they stay set across
+  // Prepare() (default 1).
+  void SetStrokeGains(double sound, double haptic, double ramp_s = 0.02);
+
   // Vibrational energy of the resonator (J), cheap (O(modes)).
   double ResonatorEnergy() const;
   // Total mechanical energy (J): resonator + probe kinetic + contact potential k x^(α+1)/(α+1) +

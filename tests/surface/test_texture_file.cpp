@@ -105,3 +105,34 @@ TEST_CASE("texture file mistakes are reported with file, line and key", "[surfac
                     Catch::Contains("s.toml:1"));
   CHECK_THROWS_AS(sas::surface::LoadTextureFile("/nonexistent/texture.toml"), LoadError);
 }
+
+TEST_CASE("a [levels] table parses in style, speed, pressure order and its mistakes are reported",
+          "[surface]") {
+  const std::string levels = R"(
+[levels]
+speeds_mm_s = [40.0, 350.0]
+pressures = [0.3, 0.6]
+scrape_sound_lufs = [-40.0, -38.0, -30.0, -28.0]
+scrape_haptic_rms_db = [-41.0, -39.0, -31.0, -29.0]
+rub_sound_lufs = [-50.0, -48.0, -35.0, -33.0]
+rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0]
+)";
+  const auto t = ParseTextureFile(Replace(kValid, "\n[probe]", levels + "\n[probe]"), "t.toml");
+  REQUIRE(t.levels);
+  const auto& l = *t.levels;
+  CHECK(l.speeds_mm_s == std::vector<double>{40.0, 350.0});
+  CHECK(l.pressures == std::vector<double>{0.3, 0.6});
+  CHECK(l.sound_lufs[l.Index(0, 1, 0)] == -30.0);  // scrape, 350 mm/s, pressure 0.3
+  CHECK(l.sound_lufs[l.Index(1, 0, 1)] == -48.0);  // rub, 40 mm/s, pressure 0.6
+  CHECK(l.haptic_rms_db[l.Index(1, 1, 1)] == -34.0);
+  CHECK_FALSE(ParseTextureFile(kValid, "t.toml").levels);  // optional
+  const auto fails = [&](const std::string& from, const std::string& to, const std::string& what) {
+    const std::string text = Replace(kValid, "\n[probe]", Replace(levels, from, to) + "\n[probe]");
+    CHECK_THROWS_WITH(ParseTextureFile(text, "t.toml"), Catch::Contains(what));
+  };
+  fails("[-40.0, -38.0, -30.0, -28.0]", "[-40.0, -38.0, -30.0]", "must hold 4 numbers");
+  fails("[40.0, 350.0]", "[350.0, 40.0]", "levels.speeds_mm_s: must be strictly increasing");
+  fails("[0.3, 0.6]", "[0.3, 1.6]", "levels.pressures: value");
+  fails("rub_haptic_rms_db", "rub_vibration", "levels.rub_vibration: unknown key");
+  fails("rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0]\n", "", "missing required key");
+}

@@ -146,6 +146,68 @@ TEST_CASE(
   CHECK(std::memcmp(c.data(), d.data(), c.size() * sizeof(float)) == 0);
 }
 
+TEST_CASE(
+    "stroke gains set mid-stroke scale sound and vibration by exactly their amount after a 20 ms "
+    "ramp that never steps, and a reset scene takes them at once",
+    "[dsp][render]") {
+  test::OwnedField field(4000, 1, 0.153e-3, Ridges());
+  OutputParams p;
+  p.sound_gain = 0.1;  // peaks below the limiter's knee even at +6 dB: the gain is exactly linear
+  const long frames = 24000;
+  const long switch_frame = 6016;  // a block boundary; the ramp then takes 960 frames
+  const double sound_db = 5.0, haptic_db = -7.0;
+  Scene plain, gained;
+  for (Scene* s : {&plain, &gained}) {
+    s->Init(kFs);
+    s->Prepare(LowModes(), p, field.view);
+  }
+  const auto a = Stroke(plain, frames, [](long) {});
+  const auto b = Stroke(gained, frames, [&](long start) {
+    if (start == switch_frame) {
+      gained.SetStrokeGains(std::pow(10.0, sound_db / 20.0), std::pow(10.0, haptic_db / 20.0));
+    }
+  });
+  for (int channel : {0, 1}) {
+    CHECK(ChannelRms(b, channel, 0, switch_frame) == ChannelRms(a, channel, 0, switch_frame));
+  }
+  const long settled = switch_frame + 960;
+  REQUIRE(ChannelRms(a, 0, settled, frames) > 1e-4);
+  REQUIRE(ChannelRms(a, 1, settled, frames) > 1e-4);
+  const auto ratio_db = [&](int channel) {
+    return 20.0 * std::log10(ChannelRms(b, channel, settled, frames) /
+                             ChannelRms(a, channel, settled, frames));
+  };
+  CHECK(ratio_db(0) == Approx(sound_db).margin(0.01));
+  CHECK(ratio_db(1) == Approx(haptic_db).margin(0.01));
+  // The ramp never steps: during it neighbouring samples differ no more than the larger of the
+  // two signals' own steps allows (a jump of 5 dB on one sample would show as a step ~0.8 x the
+  // signal's amplitude).
+  for (int channel : {0, 1}) {
+    double max_step_a = 0.0, max_step_b = 0.0;
+    for (long i = switch_frame; i < settled; ++i) {
+      const auto k = static_cast<std::size_t>(2 * i + channel);
+      max_step_a = std::max(max_step_a, static_cast<double>(std::fabs(a[k] - a[k - 2])));
+      max_step_b = std::max(max_step_b, static_cast<double>(std::fabs(b[k] - b[k - 2])));
+    }
+    CHECK(max_step_b <= max_step_a * std::max(1.0, std::pow(10.0, sound_db / 20.0)) * 1.01);
+  }
+  // A reset scene takes the gains at once: its first stroke is the plain one scaled exactly.
+  gained.SetStrokeGains(2.0, 0.5);
+  gained.Reset();
+  plain.Reset();
+  const auto c = Stroke(gained, 4800, [](long) {});
+  const auto d = Stroke(plain, 4800, [](long) {});
+  CHECK(ChannelRms(c, 0, 0, 4800) == Approx(2.0 * ChannelRms(d, 0, 0, 4800)).epsilon(1e-6));
+  CHECK(ChannelRms(c, 1, 0, 4800) == Approx(0.5 * ChannelRms(d, 1, 0, 4800)).epsilon(1e-6));
+  // Back at 1, the scene renders bit for bit like one that never had a stroke gain.
+  gained.SetStrokeGains(1.0, 1.0);
+  gained.Reset();
+  plain.Reset();
+  const auto e = Stroke(gained, 4800, [](long) {});
+  const auto f = Stroke(plain, 4800, [](long) {});
+  CHECK(std::memcmp(e.data(), f.data(), e.size() * sizeof(float)) == 0);
+}
+
 TEST_CASE("the output stage holds the haptic ceiling for any finite input", "[dsp]") {
   OutputParams p;
   p.haptic_gain = 1e12;

@@ -1,0 +1,104 @@
+#pragma once
+// Per-stroke loudness matching of the kiosk textures (issue 7, noisy room): the same stroke should
+// sound equally loud and vibrate equally strongly on any of the four textures (within 1 dB), so
+// that switching tokens never jumps in level. One gain pair per texture ([gains] in texture.toml,
+// kiosk/texture_levels.h) matches the textures on average only: their levels grow with stroke
+// speed and pressure at different rates (glass spans 17 dB from a slow firm rub to a fast light
+// scrape, wood 6 dB). So each texture also carries its measured stroke levels over a grid
+// (texture.toml [levels]: style scrape | rub x pen speed x pen pressure,
+// surface::StrokeLevelTable), and the kiosk corrects every stroke by the difference between the
+// reference level for that stroke and the texture's own:
+//
+//   reference(style, speed, pressure) = median over the loaded textures' tables (dB), moved just
+//                                       enough that every texture reaches it within
+//                                       kMaxStrokeCorrectionDb
+//   correction(texture, ...)          = reference - table(texture), interpolated
+//
+// so the stroke dynamics (faster and harder = louder) stay those of the typical texture and only
+// the texture-to-texture differences go. The median (of four: the mean of the middle two), so an
+// outlier does not set the level for all; but where one texture lies more than
+// kMaxStrokeCorrectionDb from it (broken glass rubbed slowly sticks and stays ~25 dB below the
+// others; its vibration, cracks only, is capped by kMaxHapticGainDb) the reference moves towards
+// it just far enough that it can still be matched, and halfway between the extremes when the
+// textures span more than twice the limit (then the two extremes stay apart by the excess). The
+// reference is formed at load time from the tables, so each texture's table is measured on its own
+// (regenerating one texture does not depend on the others); a texture without a table, or with a
+// grid that differs from the first table's, gets no correction (0 dB) and is left out of the
+// reference. Interpolation: linear in log speed and in pressure within the grid (bilinear), held at
+// the grid's edge outside it; style by the probe's style (rub for a rub, scrape for a scrape or
+// roll).
+//
+// Run time (KioskEngine, control thread): the pen's speed and pressure are smoothed (StrokeTracker:
+// one-pole, kStrokeSmoothingS; a new stroke starts from its first measured speed), the correction
+// for the texture under the pen goes to the scene as linear gains (synth::Scene::SetStrokeGains),
+// which the audio thread applies before the limiters, ramped over 20 ms. While the pen is up the
+// last correction holds, so a stroke's tail rings out at the gain it started with.
+
+#include <vector>
+
+#include "surface/texture_file.h"
+#include "synth/probe_command.h"
+
+namespace sas::kiosk {
+
+struct StrokeCorrection {
+  double sound_db = 0.0;
+  double haptic_db = 0.0;
+};
+
+// The reference level of one grid point from the textures' levels there (as above).
+double ReferenceLevel(std::vector<double> levels);
+
+// The table's levels at (style, speed, pressure), interpolated as above.
+StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth::ProbeStyle style,
+                                   double speed_mm_s, double pressure);
+
+// Largest correction applied either way (dB): beyond it a table is broken, not a texture quieter.
+inline constexpr double kMaxStrokeCorrectionDb = 18.0;
+
+class StrokeGainMap {
+ public:
+  StrokeGainMap() = default;
+  // One entry per texture (nullptr or a table); the reference is the mean of those that agree on
+  // the first table's grid.
+  explicit StrokeGainMap(const std::vector<const surface::StrokeLevelTable*>& tables);
+
+  // The correction for texture `texture` (an index into the constructor's list; out of range or
+  // without a table: 0 dB), clamped to +-kMaxStrokeCorrectionDb.
+  StrokeCorrection Correction(int texture, synth::ProbeStyle style, double speed_mm_s,
+                              double pressure) const;
+  // Textures that take part in the reference.
+  int matched_textures() const { return matched_; }
+
+ private:
+  std::vector<surface::StrokeLevelTable> corrections_;  // per texture: reference - own (or empty)
+  int matched_ = 0;
+};
+
+// The pen's smoothed speed and pressure over a stroke (control thread, per pen sample). The speed
+// at touch-down comes from the pen's last report before it (hovering, kMaxReportGapS ago at
+// most): a hand comes in moving, so the landing click already gets the stroke's correction.
+// Without such a report (touch, a pen brought from out of range) the last stroke's speed holds
+// until the second sample.
+inline constexpr double kStrokeSmoothingS = 0.05;
+inline constexpr double kMaxReportGapS = 0.05;
+inline constexpr double kMaxPenSpeedMmS =
+    2000.0;  // faster: a jump (out of range and back), not a stroke
+class StrokeTracker {
+ public:
+  // A pen sample: tip down or not, the pen's speed since its previous report (mm/s; `has_speed`
+  // false when there is none within kMaxReportGapS or it is implausible), pressure 0..1, time
+  // since the previous report (s).
+  void Update(bool tip_down, bool has_speed, double speed_mm_s, double pressure, double dt_s);
+  bool valid() const { return valid_; }  // the pen has touched down since the start
+  double speed_mm_s() const { return speed_mm_s_; }
+  double pressure() const { return pressure_; }
+
+ private:
+  bool valid_ = false;
+  bool down_ = false;
+  double speed_mm_s_ = 0.0;
+  double pressure_ = 0.0;
+};
+
+}  // namespace sas::kiosk

@@ -1,0 +1,105 @@
+// Per-stroke loudness matching (kiosk/stroke_gain.h): the correction for a stroke is the median
+// of the textures' levels for it minus the texture's own, interpolated in log speed and pressure
+// and held at the grid's edges; the pen's stroke is tracked from its hover speed at touch-down.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "kiosk/stroke_gain.h"
+
+using sas::kiosk::InterpolateLevels;
+using sas::kiosk::StrokeGainMap;
+using sas::kiosk::StrokeTracker;
+using sas::surface::StrokeLevelTable;
+using sas::synth::ProbeStyle;
+
+namespace {
+
+// Levels = base + 10 log10(speed / 40) + 10 (pressure - 0.3) (+ 5 for a rub), on a 2 x 2 grid.
+StrokeLevelTable Table(double base) {
+  StrokeLevelTable t;
+  t.speeds_mm_s = {40.0, 400.0};
+  t.pressures = {0.3, 0.6};
+  for (int style = 0; style < 2; ++style) {
+    for (const double v : t.speeds_mm_s) {
+      for (const double p : t.pressures) {
+        const double level = base + 10.0 * std::log10(v / 40.0) + 10.0 * (p - 0.3) + 5.0 * style;
+        t.sound_lufs.push_back(level);
+        t.haptic_rms_db.push_back(level - 1.0);
+      }
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("table levels interpolate linearly in log speed and pressure and hold at the edges",
+          "[kiosk]") {
+  const auto t = Table(-40.0);
+  // Between the grid points the test law is exactly linear in log speed and pressure.
+  const auto mid = InterpolateLevels(t, ProbeStyle::kScrape, 126.49110640673518, 0.45);
+  CHECK(mid.sound_db == Approx(-40.0 + 5.0 + 1.5));
+  CHECK(mid.haptic_db == Approx(-41.0 + 5.0 + 1.5));
+  CHECK(InterpolateLevels(t, ProbeStyle::kRub, 40.0, 0.3).sound_db == Approx(-35.0));
+  // Outside the grid: the edge's value (no extrapolation), also for nonsense input.
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 5.0, 0.0).sound_db == Approx(-40.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 5000.0, 1.0).sound_db == Approx(-40.0 + 13.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, NAN, NAN).sound_db == Approx(-40.0));
+  // Roll has no table of its own: it takes the scrape's.
+  CHECK(InterpolateLevels(t, ProbeStyle::kRoll, 40.0, 0.3).sound_db == Approx(-40.0));
+}
+
+TEST_CASE(
+    "the correction brings each texture to the median of the textures' levels moved within reach "
+    "of every texture, leaves out a table on another grid and stops at its limit",
+    "[kiosk]") {
+  const auto a = Table(-40.0), b = Table(-30.0), c = Table(-36.0);
+  auto other_grid = Table(-20.0);
+  other_grid.speeds_mm_s = {50.0, 400.0};
+  const StrokeGainMap map({&a, &b, &c, nullptr, &other_grid});
+  CHECK(map.matched_textures() == 3);
+  // Median of -40, -30, -36 is -36 (at every grid point: the tables differ by constants).
+  CHECK(map.Correction(0, ProbeStyle::kScrape, 100.0, 0.5).sound_db == Approx(4.0));
+  CHECK(map.Correction(1, ProbeStyle::kRub, 100.0, 0.5).haptic_db == Approx(-6.0));
+  CHECK(map.Correction(2, ProbeStyle::kScrape, 300.0, 0.4).sound_db == Approx(0.0).margin(1e-12));
+  // No table, another grid, an unknown texture: no correction.
+  CHECK(map.Correction(3, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
+  CHECK(map.Correction(4, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
+  CHECK(map.Correction(-1, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
+  // The median, moved so that a texture far off can still reach it within the limit (18 dB) ...
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -36.0}) == Approx(-36.0));
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -60.0, -36.0}) == Approx(-42.0));
+  // ... and halfway between the extremes when they are more than twice the limit apart.
+  CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -90.0, -36.0}) == Approx(-60.0));
+  const auto silent = Table(-90.0);
+  const StrokeGainMap limited({&a, &b, &silent});
+  CHECK(limited.Correction(2, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
+        Approx(sas::kiosk::kMaxStrokeCorrectionDb));
+  CHECK(limited.Correction(1, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
+        Approx(-sas::kiosk::kMaxStrokeCorrectionDb));
+}
+
+TEST_CASE(
+    "the stroke tracker takes the hover speed at touch-down, smooths while down and holds while "
+    "up",
+    "[kiosk]") {
+  StrokeTracker tracker;
+  CHECK_FALSE(tracker.valid());
+  tracker.Update(false, true, 150.0, 0.0, 0.005);  // hovering: nothing yet
+  CHECK_FALSE(tracker.valid());
+  tracker.Update(true, true, 150.0, 0.4, 0.005);  // touch-down: the hover's speed, this pressure
+  CHECK(tracker.valid());
+  CHECK(tracker.speed_mm_s() == 150.0);
+  CHECK(tracker.pressure() == 0.4);
+  for (int i = 0; i < 200; ++i) tracker.Update(true, true, 300.0, 0.6, 0.005);  // 1 s
+  CHECK(tracker.speed_mm_s() == Approx(300.0).epsilon(1e-6));
+  CHECK(tracker.pressure() == Approx(0.6).epsilon(1e-6));
+  tracker.Update(true, true, 20000.0, 0.6, 0.005);  // a jump, not a stroke: ignored
+  CHECK(tracker.speed_mm_s() == Approx(300.0).epsilon(1e-6));
+  tracker.Update(false, true, 50.0, 0.0, 0.005);  // lifted: held
+  CHECK(tracker.speed_mm_s() == Approx(300.0).epsilon(1e-6));
+  tracker.Update(true, false, 0.0, 0.3, 0.2);  // touch-down without a recent report: speed held
+  CHECK(tracker.speed_mm_s() == Approx(300.0).epsilon(1e-6));
+  CHECK(tracker.pressure() == 0.3);
+}
