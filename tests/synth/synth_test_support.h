@@ -127,6 +127,21 @@ inline MaterialParams WoodLikeBoard() {
   return m;
 }
 
+// The friction of textures/materials/metal.toml (plastic nib on steel; the SDT's typical set,
+// ../shared/reference/friction.md).
+inline FrictionParams MetalFriction() {
+  FrictionParams f;
+  f.enabled = true;
+  f.bristle_stiffness = 1e4;
+  f.bristle_damping = 10.0;
+  f.viscous_friction = 0.4;
+  f.static_coefficient = 0.3;
+  f.dynamic_coefficient = 0.18;
+  f.stribeck_velocity_mps = 0.05;
+  f.breakaway_ratio = 0.7;
+  return f;
+}
+
 inline MaterialParams SdtRubbingDemo() {
   MaterialParams m;
   m.impact.enabled = false;

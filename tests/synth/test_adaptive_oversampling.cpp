@@ -11,6 +11,7 @@
 #include "synth/contact.h"
 #include "synth/hunt_crossley_closed_form.h"
 #include "synth/scene.h"
+#include "synth_test_support.h"
 
 using namespace sas::synth;
 
@@ -116,14 +117,7 @@ TEST_CASE(
   m.impact.shape_alpha = 1.5;
   m.impact.dissipation_s_per_m = 0.15;
   m.impact.oversample = 0;
-  m.friction.enabled = true;
-  m.friction.bristle_stiffness = 1e4;
-  m.friction.bristle_damping = 10.0;
-  m.friction.viscous_friction = 0.4;
-  m.friction.static_coefficient = 0.3;
-  m.friction.dynamic_coefficient = 0.18;
-  m.friction.stribeck_velocity_mps = 0.05;
-  m.friction.breakaway_ratio = 0.7;
+  m.friction = test::MetalFriction();
   Scene scene;
   scene.Init(kFs);
   scene.Prepare(m, OutputParams{}, HeightFieldView{});  // flat: no profile

@@ -264,16 +264,8 @@ TEST_CASE(
     "the bristle step's analytic slope (for the contact's Newton solve) matches central "
     "differences within 1e-4 wherever the step is one piece",
     "[dsp]") {
-  FrictionParams params;
-  params.enabled = true;
-  params.bristle_stiffness = 1e4;
-  params.bristle_damping = 10.0;
-  params.static_coefficient = 0.3;
-  params.dynamic_coefficient = 0.18;
-  params.stribeck_velocity_mps = 0.05;
-  params.breakaway_ratio = 0.7;
   FrictionModel model;
-  model.Set(params);
+  model.Set(test::MetalFriction());
   const BristleLimits limits = model.Limits(0.03, 1.0);
   int one_piece = 0, elastic = 0;
   for (const double z_fraction : {-0.9, -0.2, 0.0, 0.3, 0.69, 0.75, 0.9, 0.99, 1.2}) {
