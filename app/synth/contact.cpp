@@ -586,20 +586,12 @@ BristleStep AdvanceBristle(const FrictionModel& model, double z0, double du, dou
   return AdvanceBristleAt(model, z0, du, model.Limits(std::fabs(du) / h, fn));
 }
 
-namespace {
-// FrictionStepForce with 1/h given (the solvers call it several times per step).
-double StepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
-                 double inv_h, double noise_n) {
+double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
+                         double inv_h, double noise_n) {
   const double dz = step.z1 - z0;
   // σ1 acts only while the bristle deflects with the slip (Dupont et al.'s passivity condition).
   const double damping = dz * du >= 0.0 ? model.sigma1 * dz * inv_h : 0.0;
   return model.sigma0 * step.mean_z + damping + model.sigma2 * du * inv_h + noise_n;
-}
-}  // namespace
-
-double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
-                         double h, double noise_n) {
-  return StepForce(model, z0, step, du, 1.0 / h, noise_n);
 }
 
 namespace {
@@ -636,7 +628,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
       last_u = u;
       bristle = AdvanceBristleAt(friction, in.z0, u, limits);
-      f = StepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
+      f = FrictionStepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
       if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
       return u - in.free_du - in.coupling * (ns.force - f);
     };
@@ -653,7 +645,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       auto search = [&](double uu) {
         last_u = uu;
         bristle = AdvanceBristleAt(friction, in.z0, uu, limits);
-        f = StepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
+        f = FrictionStepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
         const double force =
             in.impact_on ? std::max(force_a + dforce_dc * in.coupling * (f - f_a), 0.0) : 0.0;
         return uu - in.free_du - in.coupling * (force - f);
@@ -732,7 +724,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
     const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h);
     const double u = in.free_du + in.free_dx - d - probe_part * e.f;
     const BristleStep b = AdvanceBristleAt(friction, in.z0, u, limits);
-    const double f = StepForce(friction, in.z0, b, u, inv_h, in.noise_n);
+    const double f = FrictionStepForce(friction, in.z0, b, u, inv_h, in.noise_n);
     const double rho = in.free_dx + in.coupling * f - compliance * e.f - d;
     const double scale = std::fabs(d) + std::fabs(in.free_dx) + compliance * std::fabs(e.f) +
                          in.coupling * std::fabs(f);

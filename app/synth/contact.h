@@ -176,9 +176,10 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
 bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
                   double* dmean_du);
 
-// Friction force over the step for slip du (see the header comment); `noise_n` is σ3 w.
+// Friction force over a step of length h = 1 / inv_h for slip du (see the header comment);
+// `noise_n` is σ3 w.
 double FrictionStepForce(const FrictionModel& model, double z0, const BristleStep& step, double du,
-                         double h, double noise_n);
+                         double inv_h, double noise_n);
 
 // One contact step. Affine model of the step (forces constant over it):
 //   Δx = free_dx - normal_compliance·F + coupling·f     (compression change)

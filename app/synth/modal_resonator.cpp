@@ -90,22 +90,6 @@ void ModalState::Prepare(const ResonatorParams& params, double sample_rate_hz, i
   Reset();
 }
 
-void ModalState::Refresh() {
-  double q_sum = 0.0, v_sum = 0.0, pickup = 0.0, free_next = 0.0;
-  for (int i = 0; i < count; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    q_sum += q[k];
-    v_sum += v[k];
-    pickup += gain[k] * v[k];
-    free_next += (full.a11[k] - 1.0) * q[k] + full.a12[k] * v[k];
-  }
-  contact_displacement = q_sum;
-  contact_velocity = v_sum;
-  pickup_velocity = pickup;
-  free_motion = free_next;
-  free_motion_map = -1;
-}
-
 namespace {
 // Four doubles per vector through the compiler's vector extension: one AVX2 register, or two SSE2
 // registers in the baseline build (same lanes, same operations, same results). Loads and stores

@@ -77,7 +77,7 @@ struct ModalState {
   std::array<double, kMaxSubstepLevels> level_inverse{1.0};  // 1 / level_substeps
   std::array<double, kMaxSubstepLevels> level_compliance{};
   std::array<ModeMaps, kMaxSubstepLevels> level_maps{};
-  // Cached sums of the current state (kept by AdvanceModes, Reset and Refresh).
+  // Cached sums of the current state (kept by AdvanceModes and Reset).
   double contact_displacement = 0.0;  // Σ q
   double contact_velocity = 0.0;      // Σ v
   double pickup_velocity = 0.0;       // Σ g v
@@ -97,8 +97,6 @@ struct ModalState {
     contact_displacement = contact_velocity = pickup_velocity = free_motion = 0.0;
     free_motion_map = -1;  // at rest the free motion is 0 for every map
   }
-  // Recomputes the cached sums after q or v were written directly.
-  void Refresh();
 
   double ContactDisplacement() const { return contact_displacement; }
   double ContactVelocity() const {  // Σ q', the surface's velocity at the contact point
