@@ -67,7 +67,7 @@ class Visit {
     const double w = options_.width_px, h = options_.height_px;
     bool midway_done = false;
     const auto pen = kiosk::StraightStroke(stroke, now_s(), options_.width_px, options_.height_px);
-    Run(kStrokeS * 0.5, pen);
+    Run(stroke.hover_s + kStrokeS * 0.5, pen);  // the hover, then half the stroke
     if (midway) {
       midway(now_s());
       midway_done = true;
