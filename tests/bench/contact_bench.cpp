@@ -744,7 +744,7 @@ int main(int argc, char** argv) {
   // the idle scene, measured in the same run. A run is short (the 2.1 s stroke takes ~50 ms), so
   // these take the best of more repetitions: the build machine is shared, and the best run is
   // the one least disturbed by other work.
-  const int cost_reps = opt.quick ? opt.reps : std::max(opt.reps, 15);
+  const int cost_reps = opt.quick ? opt.reps : std::max(opt.reps, 40);
   double active_ns = 0.0, idle_ns = 0.0, no_haptic_ns = 0.0;
   int default_os = 0;
   {
