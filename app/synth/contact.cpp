@@ -323,6 +323,12 @@ NormalStep QuadratisedNormal(const ImpactModel& m, const ContactStepInput& in, d
 // the bristle saturates) usually converge in 2-3 evaluations; if they do not, the root is
 // bracketed by expansion and found by Illinois regula falsi (superlinear, never leaves the
 // bracket). Returns the root; the caller re-evaluates there if it was not the last point tried.
+// df/du of the friction step while the bristle sticks (elastic: mean z = z0 + u/2, z1 = z0 + u):
+// σ0/2 + (σ1 + σ2)/h. The slip solves start from it where nothing better is known.
+double StickingFrictionSlope(const FrictionModel& friction, double inv_h) {
+  return 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) * inv_h;
+}
+
 template <class Residual>
 double SolveSlip(const Residual& residual, double a, double r_a, double slope0,
                  double* slope_out = nullptr) {
@@ -654,8 +660,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       // from one step to the next), else the elastic (sticking) slope.
       const double slope0 = in.slip_slope_guess > 0.0
                                 ? in.slip_slope_guess
-                                : 1.0 + in.coupling * (0.5 * friction.sigma0 +
-                                                       (friction.sigma1 + friction.sigma2) / in.h);
+                                : 1.0 + in.coupling * StickingFrictionSlope(friction, inv_h);
       out.slip_slope = slope0;
       u = SolveSlip(search, a, r_a, slope0, &out.slip_slope);
     }
@@ -673,9 +678,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       const double scale =
           std::fabs(u) + std::fabs(in.free_du) + in.coupling * (std::fabs(ns.force) + std::fabs(f));
       if (std::fabs(r) > 1e-12 * scale) {
-        const double slope0 = 1.0 + in.coupling * (0.5 * friction.sigma0 +
-                                                   (friction.sigma1 + friction.sigma2) / in.h);
-        u = SolveSlip(evaluate, u, r, slope0);
+        u = SolveSlip(evaluate, u, r, 1.0 + in.coupling * StickingFrictionSlope(friction, inv_h));
         if (!(u == last_u)) evaluate(u);
       }
     }
@@ -749,9 +752,8 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       const double secant = (f - f_prev) / (u - u_prev);
       if (std::isfinite(secant)) slope_f = secant;
     } else if (iteration == 0) {
-      slope_f = in.slip_slope_guess > 0.0
-                    ? (in.slip_slope_guess - 1.0) / in.coupling
-                    : 0.5 * friction.sigma0 + (friction.sigma1 + friction.sigma2) * inv_h;
+      slope_f = in.slip_slope_guess > 0.0 ? (in.slip_slope_guess - 1.0) / in.coupling
+                                          : StickingFrictionSlope(friction, inv_h);
     }
     u_prev = u;
     f_prev = f;
