@@ -496,9 +496,9 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     integral += (w + 0.5 * piece) * piece;
     w += piece;
     left -= piece;
-    if (left <= 0.0) {  // all elastic: z1 = z0 + du, mean = z0 + du / 2
+    if (left <= 0.0) {  // all elastic: z1 = z0 + du, mean = z0 + du / 2 (no division)
       out.z1 = sign * w;
-      out.mean_z = sign * integral / total;
+      out.mean_z = z0 + 0.5 * du;
       out.slope = BristleStep::Slope::kElastic;
       return out;
     }
@@ -520,13 +520,17 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     double p1 = 0.0, p2 = 0.0;
     Phis(r, &p1, &p2);
     if (i == 0 && piece == total) {
-      // One piece over the whole slip: BristleSlope can give the derivatives from these.
+      // One piece over the whole slip (the usual step): BristleSlope can give the derivatives
+      // from these, and the mean is the piece's own, p φ2 + w φ1, without the division below.
       out.slope = BristleStep::Slope::kOnePiece;
       out.piece_r = r;
       out.piece_phi1 = p1;
       out.piece_phi2 = p2;
       out.piece_w = w;
       out.piece_alpha = alpha;
+      out.mean_z = sign * (piece * p2 + w * p1);
+      out.z1 = sign * (w + (piece - alpha * w * piece * inv_z_ss) * p1);
+      return out;
     }
     integral += piece * (piece * p2 + w * p1);
     w += (piece - alpha * w * piece * inv_z_ss) * p1;

@@ -196,33 +196,38 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     const ModeMaps& step_maps = n == 1 ? modes.full : sub_maps;
     const double free_resonator = FreeContactMotion(modes, step_maps);
     const double v0 = probe.velocity_mps;
-    ContactStepInput in;
-    in.h = h;
-    in.inv_h = rate * static_cast<double>(n);
-    in.x0 = x0;
-    in.coupling = sub_compliance;
-    in.impact_on = impact_on;
-    in.friction_on = friction_on;
-    in.z0 = probe.bristle_m;
-    in.noise_n = drive.noise_n;
-    in.normal_guess_n = probe.normal_n;
-    in.slip_slope_guess = probe.slip_slope;
-    in.friction_guess_n = probe.friction_n;
-    in.aux0 = probe.contact_aux;
-    // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
-    // modes).
-    if (needs_rate) in.xdot0 = surface_rate + modes.ContactVelocity() - v0;
-    if (impact_on) {
-      in.free_dx = (surface_next - surface) + free_resonator -
-                   (v0 * h - 0.5 * drive.push_n * inv_mass * h * h);
-      in.normal_compliance = sub_compliance + 0.5 * h * h * inv_mass;
-      // Friction sees the normal force of the previous sub-step (explicit in f_N only: the
-      // friction step stays passive for any f_N >= 0).
-      in.friction_normal_n = drive.friction_share * (probe.normal_n > 0.0 ? probe.normal_n : 0.0);
-    } else {
-      in.friction_normal_n = drive.friction_share * drive.push_n;
-    }
-    in.free_du = drive.slide_velocity_mps * h - free_resonator;
+    // Every field is given (designated initialisers in declaration order): a default-constructed
+    // input followed by assignments made GCC clear the struct with `rep stos` first, ~3 % of the
+    // kiosk scene's time.
+    const double half_h_sq_over_m = 0.5 * h * h * inv_mass;
+    ContactStepInput in{
+        .h = h,
+        .inv_h = rate * static_cast<double>(n),
+        .x0 = x0,
+        // Impact off: no compression to track.
+        .free_dx = impact_on ? (surface_next - surface) + free_resonator -
+                                   (v0 * h - half_h_sq_over_m * drive.push_n)
+                             : 0.0,
+        .normal_compliance = impact_on ? sub_compliance + half_h_sq_over_m : 0.0,
+        .coupling = sub_compliance,
+        .free_du = drive.slide_velocity_mps * h - free_resonator,
+        .z0 = probe.bristle_m,
+        // With the impact on, friction sees the normal force of the previous sub-step (explicit
+        // in f_N only: the friction step stays passive for any f_N >= 0).
+        .friction_normal_n =
+            drive.friction_share *
+            (impact_on ? (probe.normal_n > 0.0 ? probe.normal_n : 0.0) : drive.push_n),
+        .noise_n = drive.noise_n,
+        .friction_guess_n = probe.friction_n,
+        .slip_slope_guess = probe.slip_slope,
+        .normal_guess_n = probe.normal_n,
+        // ẋ = s' + Σ q' - y' (only the explicit and trapezoid schemes read it: one pass over the
+        // modes).
+        .xdot0 = needs_rate ? surface_rate + modes.ContactVelocity() - v0 : 0.0,
+        .aux0 = probe.contact_aux,
+        .impact_on = impact_on,
+        .friction_on = friction_on,
+    };
     ContactStepOutput out;
     switch (config.scheme) {
       case ContactScheme::kExplicitPassive:

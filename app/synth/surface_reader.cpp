@@ -20,7 +20,8 @@ void SurfaceReader::Prepare(const HeightFieldView& field) {
   max_height_m_ = static_cast<double>(highest);
 }
 
-double SurfaceReader::Integral(double px, double py) const {
+// Inlined into BoxMean (four calls per sample): as a call it was a tenth of the kiosk scene's time.
+[[gnu::always_inline]] inline double SurfaceReader::Integral(double px, double py) const {
   // Bilinear interpolation of the summed-area table is the exact integral of the
   // piecewise-constant field up to (px, py).
   const int w = field_.width, hgt = field_.height;
