@@ -519,21 +519,23 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
     const double r = alpha * piece * inv_z_ss;
     double p1 = 0.0, p2 = 0.0;
     Phis(r, &p1, &p2);
+    const double piece_mean = piece * p2 + w * p1;  // mean of w over the piece
+    const double w_next = w + (piece - alpha * w * piece * inv_z_ss) * p1;
     if (i == 0 && piece == total) {
       // One piece over the whole slip (the usual step): BristleSlope can give the derivatives
-      // from these, and the mean is the piece's own, p φ2 + w φ1, without the division below.
+      // from these, and the mean is the piece's own, without the division below.
       out.slope = BristleStep::Slope::kOnePiece;
       out.piece_r = r;
       out.piece_phi1 = p1;
       out.piece_phi2 = p2;
       out.piece_w = w;
       out.piece_alpha = alpha;
-      out.mean_z = sign * (piece * p2 + w * p1);
-      out.z1 = sign * (w + (piece - alpha * w * piece * inv_z_ss) * p1);
+      out.mean_z = sign * piece_mean;
+      out.z1 = sign * w_next;
       return out;
     }
-    integral += piece * (piece * p2 + w * p1);
-    w += (piece - alpha * w * piece * inv_z_ss) * p1;
+    integral += piece * piece_mean;
+    w = w_next;
     left -= piece;
   }
   out.z1 = sign * w;
