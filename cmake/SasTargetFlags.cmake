@@ -4,9 +4,6 @@ function(sas_target_flags target)
   if(SAS_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=all)
-    # -O1 in the (Debug) sanitizer build: the AddressSanitizer documentation's advice, and the
-    # sanitizer test run takes about half as long as at -O0 (CI's time budget).
-    target_compile_options(${target} PRIVATE $<$<CONFIG:Debug>:-O1>)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
   if(SAS_FUZZ)
