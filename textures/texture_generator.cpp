@@ -558,7 +558,8 @@ TextureOut CrackedGround(const Canvas& c) {
   return out;
 }
 
-// texture.toml's [levels] table (surface::StrokeLevelTable): each style's values one speed a row.
+// texture.toml's [levels] table (surface::StrokeLevelTable): each style's values one speed a row,
+// a blank-free block of rows per width.
 std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
   const auto list = [](const std::vector<double>& values, std::size_t from, std::size_t count,
                        std::size_t per_row) {
@@ -571,12 +572,16 @@ std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
     }
     return out + "]\n";
   };
+  const std::size_t widths = levels.scrape_widths_mm.size();
   const std::size_t speeds = levels.speeds_mm_s.size(), pressures = levels.pressures.size();
-  const std::size_t per_style = speeds * pressures;
+  const std::size_t per_style = widths * speeds * pressures;
   std::string out =
       "\n[levels]\n# This texture's stroke levels at the gains above, measured on the grid below "
-      "(kiosk/stroke_gain.h):\n# per style, one row per speed, one value per pressure. The kiosk "
-      "corrects each stroke\n# towards the mean of the loaded textures' levels for it.\n";
+      "(kiosk/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
+      "one value per pressure.\n# The kiosk corrects each stroke towards the median of the loaded "
+      "textures' levels for it.\n";
+  out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
+  out += "rub_widths_mm = " + list(levels.rub_widths_mm, 0, widths, widths);
   out += "speeds_mm_s = " + list(levels.speeds_mm_s, 0, speeds, speeds);
   out += "pressures = " + list(levels.pressures, 0, pressures, pressures);
   const char* names[] = {"scrape", "rub"};

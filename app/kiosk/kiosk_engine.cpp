@@ -392,6 +392,7 @@ void KioskEngine::OnPen(const PenInput& pen) {
   if (command.tip_down && !(have_last_pen_ && last_pen_.tip_down)) stroke_down_ns_ = pen.time_ns;
   if (command.tip_down && requested_slot_ >= 0) {
     stroke_style_ = command.style;
+    stroke_width_mm_ = command.width_mm;
     stroke_correction_ = CorrectionFor(stroke_texture_);
     // Landing: the new stroke's gain must be in place when its landing click (the loudest part
     // of a slow stroke) sounds, one buffer from now, so it ramps over kLandingRampS; the scene
@@ -608,7 +609,8 @@ void KioskEngine::ShowSurface(const SurfaceChoice& choice) {
 
 StrokeCorrection KioskEngine::CorrectionFor(int texture) const {
   if (!stroke_.valid()) return {};
-  return stroke_gains_.Correction(texture, stroke_style_, stroke_.speed_mm_s(), stroke_.pressure());
+  return stroke_gains_.Correction(texture, stroke_style_, stroke_width_mm_, stroke_.speed_mm_s(),
+                                  stroke_.pressure());
 }
 
 int KioskEngine::FreeSlot() const {

@@ -255,6 +255,7 @@ class KioskEngine final : public platform::AudioRenderer {
   StrokeGainMap stroke_gains_;
   StrokeTracker stroke_;
   synth::ProbeStyle stroke_style_ = synth::ProbeStyle::kScrape;
+  double stroke_width_mm_ = 0.5;     // the probe's width (tilt) for the stroke's correction
   std::int64_t stroke_down_ns_ = 0;  // when the pen last touched down
   int stroke_texture_ = -1;          // texture of the scene the pen plays (-1: the voice)
   StrokeCorrection stroke_correction_;

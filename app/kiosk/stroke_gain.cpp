@@ -27,21 +27,28 @@ void Locate(const std::vector<double>& axis, double x, bool log_axis, std::size_
 }  // namespace
 
 StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth::ProbeStyle style,
-                                   double speed_mm_s, double pressure) {
-  if (table.speeds_mm_s.empty() || table.pressures.empty()) return {};
+                                   double width_mm, double speed_mm_s, double pressure) {
   const int s = style == synth::ProbeStyle::kRub ? 1 : 0;
-  std::size_t vi = 0, pi = 0;
-  double vf = 0.0, pf = 0.0;
-  Locate(table.speeds_mm_s, std::isfinite(speed_mm_s) ? speed_mm_s : 0.0, true, &vi, &vf);
-  Locate(table.pressures, std::isfinite(pressure) ? pressure : 0.0, false, &pi, &pf);
+  const auto& widths = table.widths_mm(s);
+  if (widths.empty() || table.speeds_mm_s.empty() || table.pressures.empty()) return {};
+  const auto finite = [](double v) { return std::isfinite(v) ? v : 0.0; };
+  std::size_t wi = 0, vi = 0, pi = 0;
+  double wf = 0.0, vf = 0.0, pf = 0.0;
+  Locate(widths, finite(width_mm), false, &wi, &wf);
+  Locate(table.speeds_mm_s, finite(speed_mm_s), true, &vi, &vf);
+  Locate(table.pressures, finite(pressure), false, &pi, &pf);
+  const std::size_t w1 = std::min(wi + 1, widths.size() - 1);
   const std::size_t v1 = std::min(vi + 1, table.speeds_mm_s.size() - 1);
   const std::size_t p1 = std::min(pi + 1, table.pressures.size() - 1);
   const auto at = [&](const std::vector<double>& values) {
-    const double a =
-        values[table.Index(s, vi, pi)] * (1.0 - pf) + values[table.Index(s, vi, p1)] * pf;
-    const double b =
-        values[table.Index(s, v1, pi)] * (1.0 - pf) + values[table.Index(s, v1, p1)] * pf;
-    return a * (1.0 - vf) + b * vf;
+    const auto in_width = [&](std::size_t w) {
+      const double a =
+          values[table.Index(s, w, vi, pi)] * (1.0 - pf) + values[table.Index(s, w, vi, p1)] * pf;
+      const double b =
+          values[table.Index(s, w, v1, pi)] * (1.0 - pf) + values[table.Index(s, w, v1, p1)] * pf;
+      return a * (1.0 - vf) + b * vf;
+    };
+    return in_width(wi) * (1.0 - wf) + in_width(w1) * wf;
   };
   return {at(table.sound_lufs), at(table.haptic_rms_db)};
 }
@@ -94,11 +101,11 @@ StrokeGainMap::StrokeGainMap(const std::vector<const surface::StrokeLevelTable*>
   }
 }
 
-StrokeCorrection StrokeGainMap::Correction(int texture, synth::ProbeStyle style, double speed_mm_s,
-                                           double pressure) const {
+StrokeCorrection StrokeGainMap::Correction(int texture, synth::ProbeStyle style, double width_mm,
+                                           double speed_mm_s, double pressure) const {
   if (texture < 0 || texture >= static_cast<int>(corrections_.size())) return {};
   const auto& table = corrections_[static_cast<std::size_t>(texture)];
-  StrokeCorrection c = InterpolateLevels(table, style, speed_mm_s, pressure);
+  StrokeCorrection c = InterpolateLevels(table, style, width_mm, speed_mm_s, pressure);
   c.sound_db = std::clamp(c.sound_db, -kMaxStrokeCorrectionDb, kMaxStrokeCorrectionDb);
   c.haptic_db = std::clamp(c.haptic_db, -kMaxStrokeCorrectionDb, kMaxStrokeCorrectionDb);
   return c;

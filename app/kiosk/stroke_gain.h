@@ -5,7 +5,7 @@
 // kiosk/texture_levels.h) matches the textures on average only: their levels grow with stroke
 // speed and pressure at different rates (glass spans 17 dB from a slow firm rub to a fast light
 // scrape, wood 6 dB). So each texture also carries its measured stroke levels over a grid
-// (texture.toml [levels]: style scrape | rub x pen speed x pen pressure,
+// (texture.toml [levels]: style scrape | rub x probe width x pen speed x pen pressure,
 // surface::StrokeLevelTable), and the kiosk corrects every stroke by the difference between the
 // reference level for that stroke and the texture's own:
 //
@@ -24,9 +24,10 @@
 // reference is formed at load time from the tables, so each texture's table is measured on its own
 // (regenerating one texture does not depend on the others); a texture without a table, or with a
 // grid that differs from the first table's, gets no correction (0 dB) and is left out of the
-// reference. Interpolation: linear in log speed and in pressure within the grid (bilinear), held at
-// the grid's edge outside it; style by the probe's style (rub for a rub, scrape for a scrape or
-// roll).
+// reference. Interpolation: linear in probe width (within the style's widths), in log speed and in
+// pressure (trilinear), held at the grid's edge outside it; style by the probe's style (rub for a
+// rub, scrape for a scrape or roll). A level table cannot follow every regime change between its
+// points (README, "Textures, loudness matching and spoken cues", gives what it leaves).
 //
 // Run time (KioskEngine, control thread): the pen's speed and pressure are smoothed (StrokeTracker:
 // one-pole, kStrokeSmoothingS; a new stroke starts from its first measured speed), the correction
@@ -49,9 +50,9 @@ struct StrokeCorrection {
 // The reference level of one grid point from the textures' levels there (as above).
 double ReferenceLevel(std::vector<double> levels);
 
-// The table's levels at (style, speed, pressure), interpolated as above.
+// The table's levels at (style, probe width, speed, pressure), interpolated as above.
 StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth::ProbeStyle style,
-                                   double speed_mm_s, double pressure);
+                                   double width_mm, double speed_mm_s, double pressure);
 
 // Largest correction applied either way (dB): beyond it a table is broken, not a texture quieter.
 inline constexpr double kMaxStrokeCorrectionDb = 18.0;
@@ -65,8 +66,8 @@ class StrokeGainMap {
 
   // The correction for texture `texture` (an index into the constructor's list; out of range or
   // without a table: 0 dB), clamped to +-kMaxStrokeCorrectionDb.
-  StrokeCorrection Correction(int texture, synth::ProbeStyle style, double speed_mm_s,
-                              double pressure) const;
+  StrokeCorrection Correction(int texture, synth::ProbeStyle style, double width_mm,
+                              double speed_mm_s, double pressure) const;
   // Textures that take part in the reference.
   int matched_textures() const { return matched_; }
 

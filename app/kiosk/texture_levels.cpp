@@ -87,18 +87,26 @@ VisitorStroke PlacedStroke(const char* name, int place, double speed_mm_s, doubl
   throw RenderError(std::string(name) + ": no place on the screen for this stroke");
 }
 
+double TiltForWidthDeg(double width_mm) {
+  const GestureMapping mapping;  // the kiosk engine's
+  const double fraction = std::clamp(
+      (width_mm - mapping.min_width_mm) / (mapping.max_width_mm - mapping.min_width_mm), 0.0, 1.0);
+  return fraction * mapping.max_tilt_deg;
+}
+
 std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid) {
   std::vector<VisitorStroke> strokes;
   int place = 0;
   for (const bool rub : {false, true}) {
-    for (const double speed : grid.speeds_mm_s) {
-      for (const double pressure : grid.pressures) {
-        char name[64];
-        std::snprintf(name, sizeof name, "%s %.0f mm/s p%.2f", rub ? "rub" : "scrape", speed,
-                      pressure);
-        for (int i = 0; i < grid.places; ++i) {
-          strokes.push_back(
-              PlacedStroke(name, place++, speed, pressure, rub ? kRubTiltDeg : kScrapeTiltDeg));
+    for (const double width : rub ? grid.rub_widths_mm : grid.scrape_widths_mm) {
+      for (const double speed : grid.speeds_mm_s) {
+        for (const double pressure : grid.pressures) {
+          char name[64];
+          std::snprintf(name, sizeof name, "%s %.1f mm %.0f mm/s p%.2f", rub ? "rub" : "scrape",
+                        width, speed, pressure);
+          for (int i = 0; i < grid.places; ++i) {
+            strokes.push_back(PlacedStroke(name, place++, speed, pressure, TiltForWidthDeg(width)));
+          }
         }
       }
     }
@@ -155,10 +163,7 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   const double fs = visit.sample_rate_hz();
   // The engine plays a pen event one buffer after it happened (kiosk_engine.h).
   const double delay_s = visit.block_frames() / fs;
-  struct Window {
-    std::size_t from, to;
-  };
-  std::vector<Window> windows;
+  std::vector<surface::FrameWindow> windows;
   for (const auto& stroke : measurement.strokes) {
     const double t_hover = visit.now_s();
     visit.Advance(stroke.pen.hover_s + stroke.pen.duration_s + kGapS,
@@ -170,10 +175,12 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   }
 
   const std::span<const float> all(visit.output());
+  const std::vector<double> loudness = surface::KWeightedLoudnessDb(all, fs, windows, 2);
   std::vector<StrokeLevels> result;
-  for (const auto& [from, to] : windows) {
+  for (std::size_t w = 0; w < windows.size(); ++w) {
+    const auto [from, to] = windows[w];
     StrokeLevels levels;
-    levels.sound_lufs = surface::KWeightedLoudnessDb(all, fs, from, to, 2);
+    levels.sound_lufs = loudness[w];
     levels.haptic_rms_db = surface::RmsDb(all.subspan(1), from, to, 2);
     for (std::size_t i = from; i < to && 2 * i + 1 < all.size(); ++i) {
       levels.sound_peak = std::max(levels.sound_peak, static_cast<double>(std::fabs(all[2 * i])));
@@ -237,6 +244,8 @@ TextureCalibration CalibrateTexture(const std::string& texture_toml, double targ
   // below the knee, or within the 0.05 dB the loop converged to).
   sound_applied += result.gains.sound_gain_db - gains.sound_gain_db;
   haptic_applied += result.gains.haptic_gain_db - gains.haptic_gain_db;
+  result.levels.scrape_widths_mm = grid.scrape_widths_mm;
+  result.levels.rub_widths_mm = grid.rub_widths_mm;
   result.levels.speeds_mm_s = grid.speeds_mm_s;
   result.levels.pressures = grid.pressures;
   for (const auto& levels : MeanOverPlaces(strokes, grid.places)) {

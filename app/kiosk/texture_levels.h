@@ -18,12 +18,12 @@
 //   haptic  channel 2, RMS in dBFS — the output stage has already band-limited it to 40–800 Hz
 //
 // Calibration, per texture on its own (regenerating one texture must not depend on the others):
-// the calibration strokes are a grid (CalibrationGrid: style scrape | rub x pen speed x pen
-// pressure, spanning what visitors do). First one pair of gains ([gains]) brings the mean of the
-// grid strokes' levels (in dB, each stroke counting once) to the common targets; then the levels
-// of every grid stroke at those gains (mean over its places) are the texture's [levels] table.
-// One gain pair cannot match every stroke: the textures' levels do not grow alike with speed and
-// pressure (broken glass rubbed at 40 mm/s sticks and is nearly silent, at 350 mm/s it is the
+// the calibration strokes are a grid (CalibrationGrid: style scrape | rub x probe width x pen
+// speed x pen pressure, spanning what visitors do). First one pair of gains ([gains]) brings the
+// mean of the grid strokes' levels (in dB, each stroke counting once) to the common targets; then
+// the levels of every grid stroke at those gains (mean over its places) are the texture's [levels]
+// table. One gain pair cannot match every stroke: the textures' levels do not grow alike with speed
+// and pressure (broken glass rubbed at 40 mm/s sticks and is nearly silent, at 350 mm/s it is the
 // loudest), so with [gains] alone the same grid stroke differs by up to 25 dB (sound) and 37 dB
 // (vibration) between textures. The kiosk removes that stroke by stroke from the tables
 // (stroke_gain.h: towards the median of the loaded textures' levels for the stroke); the
@@ -64,22 +64,32 @@ struct VisitorStroke {
   PenStroke pen;     // screen fractions on the kiosk's 1920 x 1080 screen
 };
 
-// The calibration grid: pen speeds (mm/s) and pressures, for scrape (pen upright) and rub (pen
-// tilted ~50°, a 5 mm wide probe). 40–350 mm/s spans slow to fast strokes; pressure 0.3–0.6 stays
-// below the bubbles' pop force, so bubble wrap is stroked, not popped.
+// The calibration grid: probe widths (the pen's tilt: kiosk/gesture.h), pen speeds (mm/s) and
+// pressures, for scrape (pen upright to ~17°, a 0.3–2 mm point) and rub (pen tilted further, a
+// 2–6 mm wide probe). 40–350 mm/s spans slow to fast strokes; pressure 0.15–0.6 stays below the
+// bubbles' pop force, so bubble wrap is stroked, not popped. Each axis is there because a level
+// depends on it differently from texture to texture: wood's grain is louder under a narrow point
+// and its scrape jumps by up to 17 dB between pressure 0.3 and 0.6 (the point starts to dig into
+// the grain), so a coarser grid left held-out strokes up to 9 dB apart.
 // Each grid point is stroked at `places` places on the picture, in different directions; its level
 // is the mean (dB) over them: where a stroke runs changes its level too (broken glass: whether it
-// crosses cracks), and the table is meant to hold the texture's typical level for the stroke.
+// crosses cracks, wood: whether it crosses the knot), and the table is meant to hold the
+// texture's typical level for the stroke, so there must be enough places for their mean to settle
+// (from place to place a stroke's level varies by a standard deviation of up to 4 dB in sound
+// and 8 dB in vibration: 12 places put the table's sampling error near 1-2 dB at worst).
 struct CalibrationGrid {
+  std::vector<double> scrape_widths_mm = {0.3, 0.9, 1.9};
+  std::vector<double> rub_widths_mm = {2.1, 4.0, 6.0};
   std::vector<double> speeds_mm_s = {40.0, 80.0, 160.0, 350.0};
-  std::vector<double> pressures = {0.3, 0.6};
-  int places = 2;
+  std::vector<double> pressures = {0.3, 0.45, 0.6};
+  int places = 12;
 };
-inline constexpr double kScrapeTiltDeg = 5.0;  // pen nearly upright: a 0.8 mm point, scrape
-inline constexpr double kRubTiltDeg = 50.0;    // pen tilted: a 5 mm wide probe, rub
+// The pen tilt that gives a probe `width_mm` wide under the kiosk's pen mapping (the inverse of
+// kiosk/gesture.h's WidthFromTiltMm, within its range).
+double TiltForWidthDeg(double width_mm);
 
 // The grid's strokes: for each grid point in the order of surface::StrokeLevelTable
-// ([style][speed][pressure]) `places` strokes at places 0, 1, 2, ... (PlacedStroke), each
+// ([style][width][speed][pressure]) `places` strokes at places 0, 1, 2, ... (PlacedStroke), each
 // kStrokeS long after kHoverS of hover.
 std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid);
 const std::vector<VisitorStroke>& CalibrationStrokes();  // the default grid's

@@ -67,6 +67,36 @@ double KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz
   return mean_square > 0.0 ? kLoudnessOffsetDb + PowerDb(mean_square) : kSilenceDb;
 }
 
+std::vector<double> KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz,
+                                        std::span<const FrameWindow> windows, std::size_t stride) {
+  std::vector<double> loudness;
+  bool ordered = stride > 0 && sample_rate_hz > 0.0;
+  for (std::size_t w = 1; w < windows.size() && ordered; ++w) {
+    ordered = windows[w].from >= windows[w - 1].to;
+  }
+  if (!ordered) {
+    for (const auto& w : windows) {
+      loudness.push_back(KWeightedLoudnessDb(samples, sample_rate_hz, w.from, w.to, stride));
+    }
+    return loudness;
+  }
+  const std::size_t frames = (samples.size() + stride - 1) / stride;
+  auto filters = KWeightingFilters(sample_rate_hz);
+  std::size_t i = 0;  // next frame through the filters
+  for (const auto& w : windows) {
+    const std::size_t to = std::min(w.to, frames);
+    double sum = 0.0;
+    for (; i < to; ++i) {
+      double y = samples[i * stride];
+      for (auto& section : filters) y = section.Process(y);
+      if (i >= w.from) sum += y * y;
+    }
+    const double mean_square = w.from < to ? sum / static_cast<double>(to - w.from) : 0.0;
+    loudness.push_back(mean_square > 0.0 ? kLoudnessOffsetDb + PowerDb(mean_square) : kSilenceDb);
+  }
+  return loudness;
+}
+
 double RmsDb(std::span<const float> samples, std::size_t from, std::size_t to, std::size_t stride) {
   if (stride == 0) return kSilenceDb;
   const std::size_t frames = (samples.size() + stride - 1) / stride;

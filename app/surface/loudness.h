@@ -19,6 +19,7 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "synth/output_stage.h"
 
@@ -33,6 +34,15 @@ std::array<synth::Biquad, 2> KWeightingFilters(double sample_rate_hz);
 // pass a pointer offset to pick the channel). `to` is clamped to the signal length.
 double KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz, std::size_t from,
                            std::size_t to, std::size_t stride = 1);
+// The loudness of each window [from, to) of one signal, filtering it once (the single-window
+// form above filters from the start, so measuring n strokes of a long run that way costs n^2).
+// Windows in ascending order without overlap; otherwise each is measured on its own.
+struct FrameWindow {
+  std::size_t from = 0, to = 0;
+};
+std::vector<double> KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz,
+                                        std::span<const FrameWindow> windows,
+                                        std::size_t stride = 1);
 double RmsDb(std::span<const float> samples, std::size_t from, std::size_t to,
              std::size_t stride = 1);
 

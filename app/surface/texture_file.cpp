@@ -78,17 +78,18 @@ class Checker {
 
 // An array of numbers within [lo, hi]; `count` > 0: exactly that many.
 std::vector<double> Numbers(const Checker& check, const toml::table& table, std::string_view key,
-                            double lo, double hi, std::size_t count) {
+                            double lo, double hi, std::size_t count,
+                            const char* count_is = "widths x speeds x pressures") {
   const std::string name = "levels." + std::string(key);
   const toml::node& node = check.Need(table, table.source(), "levels.", key);
   if (!node.is_array()) check.Fail(node.source(), name, "must be an array of numbers");
   const toml::array& array = *node.as_array();
   if (count > 0 && array.size() != count) {
     check.Fail(node.source(), name,
-               "must hold " + std::to_string(count) + " numbers (styles x speeds x pressures)");
+               "must hold " + std::to_string(count) + " numbers (" + count_is + ")");
   }
-  if (array.empty() || array.size() > 64)
-    check.Fail(node.source(), name, "must hold 1..64 numbers");
+  if (array.empty() || array.size() > 256)
+    check.Fail(node.source(), name, "must hold 1..256 numbers");
   std::vector<double> values;
   for (const toml::node& element : array) {
     if (!element.is_number()) check.Fail(element.source(), name, "must be an array of numbers");
@@ -104,20 +105,29 @@ std::vector<double> Numbers(const Checker& check, const toml::table& table, std:
 }
 
 StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
-  check.OnlyKeys(table, "levels.",
-                 {"speeds_mm_s", "pressures", "scrape_sound_lufs", "scrape_haptic_rms_db",
-                  "rub_sound_lufs", "rub_haptic_rms_db"});
+  check.OnlyKeys(
+      table, "levels.",
+      {"scrape_widths_mm", "rub_widths_mm", "speeds_mm_s", "pressures", "scrape_sound_lufs",
+       "scrape_haptic_rms_db", "rub_sound_lufs", "rub_haptic_rms_db"});
   StrokeLevelTable levels;
+  levels.scrape_widths_mm = Numbers(check, table, "scrape_widths_mm", 0.05, 50.0, 0);
+  levels.rub_widths_mm = Numbers(check, table, "rub_widths_mm", 0.05, 50.0,
+                                 levels.scrape_widths_mm.size(), "as many as scrape_widths_mm");
   levels.speeds_mm_s = Numbers(check, table, "speeds_mm_s", 1.0, 5000.0, 0);
   levels.pressures = Numbers(check, table, "pressures", 0.01, 1.0, 0);
-  for (const auto* axis : {&levels.speeds_mm_s, &levels.pressures}) {
+  const std::pair<const char*, const std::vector<double>*> axes[] = {
+      {"scrape_widths_mm", &levels.scrape_widths_mm},
+      {"rub_widths_mm", &levels.rub_widths_mm},
+      {"speeds_mm_s", &levels.speeds_mm_s},
+      {"pressures", &levels.pressures}};
+  for (const auto& [key, axis] : axes) {
     if (std::adjacent_find(axis->begin(), axis->end(), std::greater_equal<>()) != axis->end()) {
-      const char* key = axis == &levels.speeds_mm_s ? "speeds_mm_s" : "pressures";
       check.Fail(table.get(key)->source(), std::string("levels.") + key,
                  "must be strictly increasing");
     }
   }
-  const std::size_t per_style = levels.speeds_mm_s.size() * levels.pressures.size();
+  const std::size_t per_style =
+      levels.scrape_widths_mm.size() * levels.speeds_mm_s.size() * levels.pressures.size();
   for (const char* style : {"scrape", "rub"}) {
     for (const bool sound : {true, false}) {
       const std::string key = std::string(style) + (sound ? "_sound_lufs" : "_haptic_rms_db");

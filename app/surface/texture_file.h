@@ -12,10 +12,11 @@
 //   relief_mm = 0.5                      # height of the strongest ridge in the picture's field
 //   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
 //            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
-//   [levels] speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.3, 0.6]   # optional
+//   [levels] scrape_widths_mm = [0.3, 0.9, 1.9]   rub_widths_mm = [2.1, 4.0, 6.0]   # optional
+//            speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.15, 0.3, 0.45, 0.6]
 //            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
-//            rub_haptic_rms_db = [...]   # speeds x pressures values each, speed-major: the
-//            texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
+//            rub_haptic_rms_db = [...]   # widths x speeds x pressures values each, width-major:
+//            the texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
 //   origin_y_px
@@ -42,18 +43,27 @@ struct TextureGains {
 // generator (kiosk/texture_levels.h); the kiosk's per-stroke gains are computed from it
 // (kiosk/stroke_gain.h). Values are [style][speed][pressure], flattened in that order.
 struct StrokeLevelTable {
-  static constexpr int kStyles = 2;  // 0 scrape, 1 rub
-  std::vector<double> speeds_mm_s;   // strictly increasing, > 0
-  std::vector<double> pressures;     // strictly increasing, in (0, 1]
-  std::vector<double> sound_lufs;    // kStyles x speeds x pressures
+  static constexpr int kStyles = 2;      // 0 scrape, 1 rub
+  std::vector<double> scrape_widths_mm;  // probe widths of each style, strictly increasing, > 0;
+  std::vector<double> rub_widths_mm;     // as many for each style
+  std::vector<double> speeds_mm_s;       // strictly increasing, > 0
+  std::vector<double> pressures;         // strictly increasing, in (0, 1]
+  std::vector<double> sound_lufs;        // kStyles x widths x speeds x pressures
   std::vector<double> haptic_rms_db;
 
-  std::size_t Index(int style, std::size_t speed, std::size_t pressure) const {
-    return (static_cast<std::size_t>(style) * speeds_mm_s.size() + speed) * pressures.size() +
+  const std::vector<double>& widths_mm(int style) const {
+    return style == 0 ? scrape_widths_mm : rub_widths_mm;
+  }
+  std::size_t Index(int style, std::size_t width, std::size_t speed, std::size_t pressure) const {
+    return ((static_cast<std::size_t>(style) * scrape_widths_mm.size() + width) *
+                speeds_mm_s.size() +
+            speed) *
+               pressures.size() +
            pressure;
   }
   bool SameGrid(const StrokeLevelTable& other) const {
-    return speeds_mm_s == other.speeds_mm_s && pressures == other.pressures;
+    return scrape_widths_mm == other.scrape_widths_mm && rub_widths_mm == other.rub_widths_mm &&
+           speeds_mm_s == other.speeds_mm_s && pressures == other.pressures;
   }
 };
 

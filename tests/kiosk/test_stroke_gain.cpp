@@ -1,6 +1,7 @@
 // Per-stroke loudness matching (kiosk/stroke_gain.h): the correction for a stroke is the median
-// of the textures' levels for it minus the texture's own, interpolated in log speed and pressure
-// and held at the grid's edges; the pen's stroke is tracked from its hover speed at touch-down.
+// of the textures' levels for it minus the texture's own, interpolated in probe width, log speed
+// and pressure and held at the grid's edges; the pen's stroke is tracked from its hover speed at
+// touch-down.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -15,17 +16,23 @@ using sas::synth::ProbeStyle;
 
 namespace {
 
-// Levels = base + 10 log10(speed / 40) + 10 (pressure - 0.3) (+ 5 for a rub), on a 2 x 2 grid.
+// Levels = base + 10 log10(speed / 40) + 10 (pressure - 0.3) - 2 width_mm (+ 5 for a rub), on a
+// 2 x 2 x 2 grid per style (scrape widths 0.5 / 1.5 mm, rub 2.5 / 5.5 mm).
 StrokeLevelTable Table(double base) {
   StrokeLevelTable t;
+  t.scrape_widths_mm = {0.5, 1.5};
+  t.rub_widths_mm = {2.5, 5.5};
   t.speeds_mm_s = {40.0, 400.0};
   t.pressures = {0.3, 0.6};
   for (int style = 0; style < 2; ++style) {
-    for (const double v : t.speeds_mm_s) {
-      for (const double p : t.pressures) {
-        const double level = base + 10.0 * std::log10(v / 40.0) + 10.0 * (p - 0.3) + 5.0 * style;
-        t.sound_lufs.push_back(level);
-        t.haptic_rms_db.push_back(level - 1.0);
+    for (const double w : t.widths_mm(style)) {
+      for (const double v : t.speeds_mm_s) {
+        for (const double p : t.pressures) {
+          const double level =
+              base + 10.0 * std::log10(v / 40.0) + 10.0 * (p - 0.3) - 2.0 * w + 5.0 * style;
+          t.sound_lufs.push_back(level);
+          t.haptic_rms_db.push_back(level - 1.0);
+        }
       }
     }
   }
@@ -34,20 +41,27 @@ StrokeLevelTable Table(double base) {
 
 }  // namespace
 
-TEST_CASE("table levels interpolate linearly in log speed and pressure and hold at the edges",
-          "[kiosk]") {
+TEST_CASE(
+    "table levels interpolate linearly in probe width, log speed and pressure within each style "
+    "and "
+    "hold at the edges",
+    "[kiosk]") {
   const auto t = Table(-40.0);
-  // Between the grid points the test law is exactly linear in log speed and pressure.
-  const auto mid = InterpolateLevels(t, ProbeStyle::kScrape, 126.49110640673518, 0.45);
-  CHECK(mid.sound_db == Approx(-40.0 + 5.0 + 1.5));
-  CHECK(mid.haptic_db == Approx(-41.0 + 5.0 + 1.5));
-  CHECK(InterpolateLevels(t, ProbeStyle::kRub, 40.0, 0.3).sound_db == Approx(-35.0));
-  // Outside the grid: the edge's value (no extrapolation), also for nonsense input.
-  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 5.0, 0.0).sound_db == Approx(-40.0));
-  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 5000.0, 1.0).sound_db == Approx(-40.0 + 13.0));
-  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, NAN, NAN).sound_db == Approx(-40.0));
+  // Between the grid points the test law is exactly linear in width, log speed and pressure.
+  const auto mid = InterpolateLevels(t, ProbeStyle::kScrape, 1.0, 126.49110640673518, 0.45);
+  CHECK(mid.sound_db == Approx(-40.0 + 5.0 + 1.5 - 2.0));
+  CHECK(mid.haptic_db == Approx(-41.0 + 5.0 + 1.5 - 2.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kRub, 4.0, 40.0, 0.3).sound_db == Approx(-35.0 - 8.0));
+  // Outside the grid: the edge's value (no extrapolation), also for nonsense input; a scrape
+  // wider than the scrape widths holds at the widest scrape, not at the rub's levels.
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 0.5, 5.0, 0.0).sound_db == Approx(-41.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 0.1, 5000.0, 1.0).sound_db ==
+        Approx(-40.0 + 13.0 - 1.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 2.4, 40.0, 0.3).sound_db == Approx(-43.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kRub, 9.0, 40.0, 0.3).sound_db == Approx(-35.0 - 11.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kScrape, NAN, NAN, NAN).sound_db == Approx(-41.0));
   // Roll has no table of its own: it takes the scrape's.
-  CHECK(InterpolateLevels(t, ProbeStyle::kRoll, 40.0, 0.3).sound_db == Approx(-40.0));
+  CHECK(InterpolateLevels(t, ProbeStyle::kRoll, 0.5, 40.0, 0.3).sound_db == Approx(-41.0));
 }
 
 TEST_CASE(
@@ -60,13 +74,14 @@ TEST_CASE(
   const StrokeGainMap map({&a, &b, &c, nullptr, &other_grid});
   CHECK(map.matched_textures() == 3);
   // Median of -40, -30, -36 is -36 (at every grid point: the tables differ by constants).
-  CHECK(map.Correction(0, ProbeStyle::kScrape, 100.0, 0.5).sound_db == Approx(4.0));
-  CHECK(map.Correction(1, ProbeStyle::kRub, 100.0, 0.5).haptic_db == Approx(-6.0));
-  CHECK(map.Correction(2, ProbeStyle::kScrape, 300.0, 0.4).sound_db == Approx(0.0).margin(1e-12));
+  CHECK(map.Correction(0, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db == Approx(4.0));
+  CHECK(map.Correction(1, ProbeStyle::kRub, 3.0, 100.0, 0.5).haptic_db == Approx(-6.0));
+  CHECK(map.Correction(2, ProbeStyle::kScrape, 0.7, 300.0, 0.4).sound_db ==
+        Approx(0.0).margin(1e-12));
   // No table, another grid, an unknown texture: no correction.
-  CHECK(map.Correction(3, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
-  CHECK(map.Correction(4, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
-  CHECK(map.Correction(-1, ProbeStyle::kScrape, 100.0, 0.5).sound_db == 0.0);
+  CHECK(map.Correction(3, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db == 0.0);
+  CHECK(map.Correction(4, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db == 0.0);
+  CHECK(map.Correction(-1, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db == 0.0);
   // The median, moved so that a texture far off can still reach it within the limit (18 dB) ...
   CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -36.0}) == Approx(-36.0));
   CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -60.0, -36.0}) == Approx(-42.0));
@@ -74,9 +89,9 @@ TEST_CASE(
   CHECK(sas::kiosk::ReferenceLevel({-40.0, -30.0, -90.0, -36.0}) == Approx(-60.0));
   const auto silent = Table(-90.0);
   const StrokeGainMap limited({&a, &b, &silent});
-  CHECK(limited.Correction(2, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
+  CHECK(limited.Correction(2, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db ==
         Approx(sas::kiosk::kMaxStrokeCorrectionDb));
-  CHECK(limited.Correction(1, ProbeStyle::kScrape, 100.0, 0.5).sound_db ==
+  CHECK(limited.Correction(1, ProbeStyle::kScrape, 1.0, 100.0, 0.5).sound_db ==
         Approx(-sas::kiosk::kMaxStrokeCorrectionDb));
 }
 

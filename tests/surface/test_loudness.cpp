@@ -75,3 +75,43 @@ TEST_CASE("RMS in dB matches the closed form and reads one channel of interleave
   CHECK(RmsDb(all, 0, x.size(), 2) == sas::surface::kSilenceDb);
   CHECK(RmsDb(x, 10, 10) == sas::surface::kSilenceDb);  // empty window
 }
+
+TEST_CASE(
+    "the loudness of many windows from one filtering pass equals each window measured on its own, "
+    "and a closed-form sine's level in each",
+    "[surface]") {
+  // Interleaved stereo: a 1 kHz sine whose amplitude steps 0.5 -> 0.125 -> 1 in three 0.5 s parts
+  // on channel 1; channel 2 holds noise-free junk that must not leak in.
+  const double fs = 48000.0;
+  std::vector<float> mono;
+  for (const double amplitude : {0.5, 0.125, 1.0}) {
+    const auto part = Sine(1000.0, amplitude, fs, 0.5);
+    mono.insert(mono.end(), part.begin(), part.end());
+  }
+  std::vector<float> stereo(2 * mono.size());
+  for (std::size_t i = 0; i < mono.size(); ++i) {
+    stereo[2 * i] = mono[i];
+    stereo[2 * i + 1] = 0.9f;
+  }
+  // One window in each part, past the previous part's filter transient; a gap between windows;
+  // the last runs past the end (clamped).
+  const std::vector<sas::surface::FrameWindow> windows = {
+      {2400, 24000}, {26400, 48000}, {50400, 60000}, {62400, 90000}};
+  const auto many = KWeightedLoudnessDb(stereo, fs, windows, 2);
+  REQUIRE(many.size() == windows.size());
+  for (std::size_t w = 0; w < windows.size(); ++w) {
+    CHECK(many[w] ==
+          Approx(KWeightedLoudnessDb(stereo, fs, windows[w].from, windows[w].to, 2)).margin(1e-9));
+  }
+  // A 1 kHz sine of amplitude a reads -3.01 + 20 log10(a) (the BS.1770 calibration point).
+  CHECK(many[0] == Approx(-3.01 + 20.0 * std::log10(0.5)).margin(0.02));
+  CHECK(many[1] == Approx(-3.01 + 20.0 * std::log10(0.125)).margin(0.02));
+  CHECK(many[2] == Approx(-3.01).margin(0.02));
+  CHECK(many[3] == Approx(-3.01).margin(0.02));
+  // Overlapping or out-of-order windows are measured one by one, with the same answers.
+  const std::vector<sas::surface::FrameWindow> overlapping = {{26400, 48000}, {2400, 30000}};
+  const auto apart = KWeightedLoudnessDb(stereo, fs, overlapping, 2);
+  REQUIRE(apart.size() == 2);
+  CHECK(apart[0] == Approx(many[1]).margin(1e-9));
+  CHECK(apart[1] == Approx(KWeightedLoudnessDb(stereo, fs, 2400, 30000, 2)).margin(1e-9));
+}

@@ -106,33 +106,42 @@ TEST_CASE("texture file mistakes are reported with file, line and key", "[surfac
   CHECK_THROWS_AS(sas::surface::LoadTextureFile("/nonexistent/texture.toml"), LoadError);
 }
 
-TEST_CASE("a [levels] table parses in style, speed, pressure order and its mistakes are reported",
-          "[surface]") {
+TEST_CASE(
+    "a [levels] table parses in style, width, speed, pressure order and its mistakes are reported",
+    "[surface]") {
   const std::string levels = R"(
 [levels]
+scrape_widths_mm = [0.3, 1.9]
+rub_widths_mm = [2.1, 6.0]
 speeds_mm_s = [40.0, 350.0]
 pressures = [0.3, 0.6]
-scrape_sound_lufs = [-40.0, -38.0, -30.0, -28.0]
-scrape_haptic_rms_db = [-41.0, -39.0, -31.0, -29.0]
-rub_sound_lufs = [-50.0, -48.0, -35.0, -33.0]
-rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0]
+scrape_sound_lufs = [-40.0, -38.0, -30.0, -28.0, -45.0, -43.0, -35.0, -33.0]
+scrape_haptic_rms_db = [-41.0, -39.0, -31.0, -29.0, -46.0, -44.0, -36.0, -34.0]
+rub_sound_lufs = [-50.0, -48.0, -35.0, -33.0, -55.0, -53.0, -40.0, -38.0]
+rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0, -56.0, -54.0, -41.0, -39.0]
 )";
   const auto t = ParseTextureFile(Replace(kValid, "\n[probe]", levels + "\n[probe]"), "t.toml");
   REQUIRE(t.levels);
   const auto& l = *t.levels;
+  CHECK(l.scrape_widths_mm == std::vector<double>{0.3, 1.9});
+  CHECK(l.rub_widths_mm == std::vector<double>{2.1, 6.0});
+  CHECK(l.widths_mm(1) == l.rub_widths_mm);
   CHECK(l.speeds_mm_s == std::vector<double>{40.0, 350.0});
   CHECK(l.pressures == std::vector<double>{0.3, 0.6});
-  CHECK(l.sound_lufs[l.Index(0, 1, 0)] == -30.0);  // scrape, 350 mm/s, pressure 0.3
-  CHECK(l.sound_lufs[l.Index(1, 0, 1)] == -48.0);  // rub, 40 mm/s, pressure 0.6
-  CHECK(l.haptic_rms_db[l.Index(1, 1, 1)] == -34.0);
+  CHECK(l.sound_lufs[l.Index(0, 0, 1, 0)] == -30.0);  // scrape, 0.3 mm, 350 mm/s, pressure 0.3
+  CHECK(l.sound_lufs[l.Index(0, 1, 1, 1)] == -33.0);  // scrape, 1.9 mm, 350 mm/s, pressure 0.6
+  CHECK(l.sound_lufs[l.Index(1, 0, 0, 1)] == -48.0);  // rub, 2.1 mm, 40 mm/s, pressure 0.6
+  CHECK(l.haptic_rms_db[l.Index(1, 1, 1, 1)] == -39.0);
   CHECK_FALSE(ParseTextureFile(kValid, "t.toml").levels);  // optional
   const auto fails = [&](const std::string& from, const std::string& to, const std::string& what) {
     const std::string text = Replace(kValid, "\n[probe]", Replace(levels, from, to) + "\n[probe]");
     CHECK_THROWS_WITH(ParseTextureFile(text, "t.toml"), Catch::Contains(what));
   };
-  fails("[-40.0, -38.0, -30.0, -28.0]", "[-40.0, -38.0, -30.0]", "must hold 4 numbers");
+  fails("[-40.0, -38.0, -30.0, -28.0, -45.0", "[-40.0, -38.0, -30.0, -45.0", "must hold 8 numbers");
   fails("[40.0, 350.0]", "[350.0, 40.0]", "levels.speeds_mm_s: must be strictly increasing");
+  fails("[2.1, 6.0]", "[6.0, 2.1]", "levels.rub_widths_mm: must be strictly increasing");
+  fails("[2.1, 6.0]", "[2.1, 4.0, 6.0]", "as many as scrape_widths_mm");
   fails("[0.3, 0.6]", "[0.3, 1.6]", "levels.pressures: value");
   fails("rub_haptic_rms_db", "rub_vibration", "levels.rub_vibration: unknown key");
-  fails("rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0]\n", "", "missing required key");
+  fails("scrape_widths_mm = [0.3, 1.9]\n", "", "missing required key");
 }
