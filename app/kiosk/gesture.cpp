@@ -207,6 +207,12 @@ double WidthFromTiltMm(double tilt_deg, const GestureMapping& mapping) {
   return mapping.min_width_mm + fraction * (mapping.max_width_mm - mapping.min_width_mm);
 }
 
+double TiltFromWidthDeg(double width_mm, const GestureMapping& mapping) {
+  const double fraction =
+      Clamp01((width_mm - mapping.min_width_mm) / (mapping.max_width_mm - mapping.min_width_mm));
+  return fraction * mapping.max_tilt_deg;
+}
+
 synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping) {
   return width_mm >= mapping.rub_width_mm ? synth::ProbeStyle::kRub : synth::ProbeStyle::kScrape;
 }

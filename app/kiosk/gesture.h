@@ -87,6 +87,8 @@ std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const Gestur
 
 // Pen tilt -> probe width and style, as above (also for the live kiosk).
 double WidthFromTiltMm(double tilt_deg, const GestureMapping& mapping);
+// Its inverse within the mapping's range: the tilt that gives a probe `width_mm` wide.
+double TiltFromWidthDeg(double width_mm, const GestureMapping& mapping);
 synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping);
 
 }  // namespace sas::kiosk

@@ -87,14 +87,8 @@ VisitorStroke PlacedStroke(const char* name, int place, double speed_mm_s, doubl
   throw RenderError(std::string(name) + ": no place on the screen for this stroke");
 }
 
-double TiltForWidthDeg(double width_mm) {
-  const GestureMapping mapping;  // the kiosk engine's
-  const double fraction = std::clamp(
-      (width_mm - mapping.min_width_mm) / (mapping.max_width_mm - mapping.min_width_mm), 0.0, 1.0);
-  return fraction * mapping.max_tilt_deg;
-}
-
 std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid) {
+  const GestureMapping mapping;  // the kiosk engine's
   std::vector<VisitorStroke> strokes;
   int place = 0;
   for (const bool rub : {false, true}) {
@@ -105,7 +99,8 @@ std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid) {
           std::snprintf(name, sizeof name, "%s %.1f mm %.0f mm/s p%.2f", rub ? "rub" : "scrape",
                         width, speed, pressure);
           for (int i = 0; i < grid.places; ++i) {
-            strokes.push_back(PlacedStroke(name, place++, speed, pressure, TiltForWidthDeg(width)));
+            strokes.push_back(
+                PlacedStroke(name, place++, speed, pressure, TiltFromWidthDeg(width, mapping)));
           }
         }
       }

@@ -84,9 +84,6 @@ struct CalibrationGrid {
   std::vector<double> pressures = {0.3, 0.45, 0.6};
   int places = 12;
 };
-// The pen tilt that gives a probe `width_mm` wide under the kiosk's pen mapping (the inverse of
-// kiosk/gesture.h's WidthFromTiltMm, within its range).
-double TiltForWidthDeg(double width_mm);
 
 // The grid's strokes: for each grid point in the order of surface::StrokeLevelTable
 // ([style][width][speed][pressure]) `places` strokes at places 0, 1, 2, ... (PlacedStroke), each

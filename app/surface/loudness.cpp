@@ -52,36 +52,26 @@ std::array<synth::Biquad, 2> KWeightingFilters(double sample_rate_hz) {
 
 double KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz, std::size_t from,
                            std::size_t to, std::size_t stride) {
-  if (stride == 0 || !(sample_rate_hz > 0.0)) return kSilenceDb;
-  const std::size_t frames = (samples.size() + stride - 1) / stride;
-  to = std::min(to, frames);
-  if (from >= to) return kSilenceDb;
-  auto filters = KWeightingFilters(sample_rate_hz);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < to; ++i) {
-    double y = samples[i * stride];
-    for (auto& section : filters) y = section.Process(y);
-    if (i >= from) sum += y * y;
-  }
-  const double mean_square = sum / static_cast<double>(to - from);
-  return mean_square > 0.0 ? kLoudnessOffsetDb + PowerDb(mean_square) : kSilenceDb;
+  const FrameWindow window{from, to};
+  return KWeightedLoudnessDb(samples, sample_rate_hz, std::span(&window, 1), stride).front();
 }
 
 std::vector<double> KWeightedLoudnessDb(std::span<const float> samples, double sample_rate_hz,
                                         std::span<const FrameWindow> windows, std::size_t stride) {
-  std::vector<double> loudness;
-  bool ordered = stride > 0 && sample_rate_hz > 0.0;
-  for (std::size_t w = 1; w < windows.size() && ordered; ++w) {
-    ordered = windows[w].from >= windows[w - 1].to;
-  }
-  if (!ordered) {
-    for (const auto& w : windows) {
-      loudness.push_back(KWeightedLoudnessDb(samples, sample_rate_hz, w.from, w.to, stride));
+  if (stride == 0 || !(sample_rate_hz > 0.0))
+    return std::vector<double>(windows.size(), kSilenceDb);
+  for (std::size_t w = 1; w < windows.size(); ++w) {
+    if (windows[w].from < windows[w - 1].to) {  // out of order or overlapping: one at a time
+      std::vector<double> loudness;
+      for (const auto& one : windows) {
+        loudness.push_back(KWeightedLoudnessDb(samples, sample_rate_hz, one.from, one.to, stride));
+      }
+      return loudness;
     }
-    return loudness;
   }
   const std::size_t frames = (samples.size() + stride - 1) / stride;
   auto filters = KWeightingFilters(sample_rate_hz);
+  std::vector<double> loudness;
   std::size_t i = 0;  // next frame through the filters
   for (const auto& w : windows) {
     const std::size_t to = std::min(w.to, frames);

@@ -128,6 +128,13 @@ TEST_CASE("pressure maps linearly to 0..2 N and penetration, tilt to width from 
   CHECK(half.front().command.width_mm ==
         Approx(0.5 * (mapping.min_width_mm + mapping.max_width_mm)));
   CHECK_FALSE(half.front().command.tip_down);
+  // The tilt for a width inverts the mapping within its range and holds at its ends.
+  CHECK(sas::kiosk::TiltFromWidthDeg(0.5 * (mapping.min_width_mm + mapping.max_width_mm),
+                                     mapping) == Approx(30.0));
+  CHECK(sas::kiosk::WidthFromTiltMm(sas::kiosk::TiltFromWidthDeg(2.1, mapping), mapping) ==
+        Approx(2.1));
+  CHECK(sas::kiosk::TiltFromWidthDeg(0.0, mapping) == 0.0);
+  CHECK(sas::kiosk::TiltFromWidthDeg(50.0, mapping) == Approx(mapping.max_tilt_deg));
   CHECK(half.front().command.normal_force_n == 0.0);
 
   mapping.style = ProbeStyle::kRoll;  // a forced style wins over the width
