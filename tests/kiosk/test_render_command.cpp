@@ -465,16 +465,21 @@ TEST_CASE("the WAV writer refuses NaN samples without creating a file and clips 
 }
 
 TEST_CASE(
-    "a light rub or scrape on wood is no louder than a firm one: the friction does not lock a "
-    "board mode into a squeal",
+    "a light rub or scrape on wood, bubble wrap or dry soil is no louder than a firm one: the "
+    "friction does not lock a mode into a squeal",
     "[render]") {
-  // Steady strokes across the flat profile (friction and the board's modes only, no relief), pen
+  // Steady strokes on the flat profile (friction and the material's modes only, no relief; a
+  // stroke running past its 78 mm stays on flat ground), pen
   // pressure 0.05-0.3 against 0.45. With the bristle damping at the SDT set's 0.1 sqrt(σ0) = 10
   // the light ones sang at the (2,1) mode's 517 Hz, up to 33 dB above the firm stroke
   // (textures/materials/wood.toml); without that, a lighter stroke is quieter or about as loud.
+  // The kiosk's other materials are held to the same; glass is not: its material asks for
+  // stick-slip squeak (μ_s twice μ_d, a low Stribeck velocity), which comes and goes with speed
+  // and pressure.
   sas::test::TempDir dir;
   const double fs = 48000.0;
-  const auto steady_db = [&](double speed_mm_s, double pressure, double tilt_deg) {
+  const auto steady_db = [&](const char* material, double speed_mm_s, double pressure,
+                             double tilt_deg) {
     const double duration_s = 0.8;
     std::ostringstream csv;
     csv << "t,x,y,pressure,tilt\n";
@@ -483,7 +488,7 @@ TEST_CASE(
       csv << t << ',' << 10.0 + speed_mm_s * t << ",20," << pressure << ',' << tilt_deg << '\n';
     }
     RenderOptions options;
-    options.material = "wood";
+    options.material = material;
     options.profile = "flat";
     options.gesture = dir.Write("stroke.csv", csv.str());
     options.tail_s = 0.0;
@@ -499,13 +504,15 @@ TEST_CASE(
     }
     return 10.0 * std::log10(sum / static_cast<double>(n) + 1e-30);
   };
-  for (const double tilt_deg : {50.0, 5.0}) {  // rub, scrape
-    for (const double speed_mm_s : {100.0, 250.0}) {
-      const double firm_db = steady_db(speed_mm_s, 0.45, tilt_deg);
-      for (const double pressure : {0.05, 0.1, 0.15, 0.2, 0.3}) {
-        INFO("tilt " << tilt_deg << "°, " << speed_mm_s << " mm/s, pressure " << pressure
-                     << " against 0.45 (" << firm_db << " dB)");
-        CHECK(steady_db(speed_mm_s, pressure, tilt_deg) <= firm_db + 1.0);
+  for (const char* material : {"wood", "bubble_wrap", "dry_soil"}) {
+    for (const double tilt_deg : {50.0, 5.0}) {  // rub, scrape
+      for (const double speed_mm_s : {100.0, 250.0}) {
+        const double firm_db = steady_db(material, speed_mm_s, 0.45, tilt_deg);
+        for (const double pressure : {0.05, 0.1, 0.15, 0.2, 0.3}) {
+          INFO(material << ", tilt " << tilt_deg << "°, " << speed_mm_s << " mm/s, pressure "
+                        << pressure << " against 0.45 (" << firm_db << " dB)");
+          CHECK(steady_db(material, speed_mm_s, pressure, tilt_deg) <= firm_db + 1.0);
+        }
       }
     }
   }
