@@ -469,13 +469,12 @@ TEST_CASE(
     "friction does not lock a mode into a squeal",
     "[render]") {
   // Steady strokes on the flat profile (friction and the material's modes only, no relief; a
-  // stroke running past its 78 mm stays on flat ground), pen
-  // pressure 0.05-0.3 against 0.45. With the bristle damping at the SDT set's 0.1 sqrt(σ0) = 10
-  // the light ones sang at the (2,1) mode's 517 Hz, up to 33 dB above the firm stroke
-  // (textures/materials/wood.toml); without that, a lighter stroke is quieter or about as loud.
-  // The kiosk's other materials are held to the same; glass is not: its material asks for
-  // stick-slip squeak (μ_s twice μ_d, a low Stribeck velocity), which comes and goes with speed
-  // and pressure.
+  // stroke running past its 78 mm stays on flat ground), pen pressure 0.05-0.3 against 0.45.
+  // With the bristle damping at the SDT set's 0.1 sqrt(σ0) = 10, light strokes on wood sang at
+  // the (2,1) mode's 517 Hz, up to 33 dB above the firm stroke (textures/materials/wood.toml);
+  // without that, a lighter stroke is quieter or about as loud. The kiosk's other materials are
+  // held to the same; glass is not: its material asks for stick-slip squeak (μ_s twice μ_d, a
+  // low Stribeck velocity), which comes and goes with speed and pressure.
   sas::test::TempDir dir;
   const double fs = 48000.0;
   const auto steady_db = [&](const char* material, double speed_mm_s, double pressure,
