@@ -27,7 +27,8 @@ void Locate(const std::vector<double>& axis, double x, bool log_axis, std::size_
 }  // namespace
 
 StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth::ProbeStyle style,
-                                   double width_mm, double speed_mm_s, double pressure) {
+                                   double width_mm, double speed_mm_s, double pressure,
+                                   LevelBlend sound_blend) {
   const int s = style == synth::ProbeStyle::kRub ? 1 : 0;
   const auto& widths = table.widths_mm(s);
   if (widths.empty() || table.speeds_mm_s.empty() || table.pressures.empty()) return {};
@@ -40,17 +41,21 @@ StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth
   const std::size_t w1 = std::min(wi + 1, widths.size() - 1);
   const std::size_t v1 = std::min(vi + 1, table.speeds_mm_s.size() - 1);
   const std::size_t p1 = std::min(pi + 1, table.pressures.size() - 1);
-  const auto at = [&](const std::vector<double>& values) {
+  const auto at = [&](const std::vector<double>& values, LevelBlend blend) {
+    const bool power = blend == LevelBlend::kPower;
+    const auto value = [&](std::size_t w, std::size_t v, std::size_t p) {
+      const double db = values[table.Index(s, w, v, p)];
+      return power ? std::pow(10.0, db / 10.0) : db;
+    };
     const auto in_width = [&](std::size_t w) {
-      const double a =
-          values[table.Index(s, w, vi, pi)] * (1.0 - pf) + values[table.Index(s, w, vi, p1)] * pf;
-      const double b =
-          values[table.Index(s, w, v1, pi)] * (1.0 - pf) + values[table.Index(s, w, v1, p1)] * pf;
+      const double a = value(w, vi, pi) * (1.0 - pf) + value(w, vi, p1) * pf;
+      const double b = value(w, v1, pi) * (1.0 - pf) + value(w, v1, p1) * pf;
       return a * (1.0 - vf) + b * vf;
     };
-    return in_width(wi) * (1.0 - wf) + in_width(w1) * wf;
+    const double blended = in_width(wi) * (1.0 - wf) + in_width(w1) * wf;
+    return power ? 10.0 * std::log10(blended) : blended;
   };
-  return {at(table.sound_lufs), at(table.haptic_rms_db)};
+  return {at(table.sound_lufs, sound_blend), at(table.haptic_rms_db, LevelBlend::kDecibels)};
 }
 
 double ReferenceLevel(std::vector<double> levels) {
@@ -71,41 +76,40 @@ StrokeGainMap::StrokeGainMap(const std::vector<const surface::StrokeLevelTable*>
       break;
     }
   }
-  corrections_.resize(tables.size());
+  levels_.resize(tables.size());
   if (first == nullptr) return;
-  surface::StrokeLevelTable reference = *first;
+  reference_ = *first;
   std::vector<const surface::StrokeLevelTable*> matched;
   for (const auto* table : tables) {
     if (table != nullptr && table->SameGrid(*first)) matched.push_back(table);
   }
   matched_ = static_cast<int>(matched.size());
   std::vector<double> sound, haptic;
-  for (std::size_t k = 0; k < reference.sound_lufs.size(); ++k) {
+  for (std::size_t k = 0; k < reference_.sound_lufs.size(); ++k) {
     sound.clear();
     haptic.clear();
     for (const auto* table : matched) {
       sound.push_back(table->sound_lufs[k]);
       haptic.push_back(table->haptic_rms_db[k]);
     }
-    reference.sound_lufs[k] = ReferenceLevel(sound);
-    reference.haptic_rms_db[k] = ReferenceLevel(haptic);
+    reference_.sound_lufs[k] = ReferenceLevel(sound);
+    reference_.haptic_rms_db[k] = ReferenceLevel(haptic);
   }
   for (std::size_t t = 0; t < tables.size(); ++t) {
-    if (tables[t] == nullptr || !tables[t]->SameGrid(*first)) continue;
-    auto& c = corrections_[t];
-    c = reference;
-    for (std::size_t k = 0; k < c.sound_lufs.size(); ++k) {
-      c.sound_lufs[k] -= tables[t]->sound_lufs[k];
-      c.haptic_rms_db[k] -= tables[t]->haptic_rms_db[k];
-    }
+    if (tables[t] != nullptr && tables[t]->SameGrid(*first)) levels_[t] = *tables[t];
   }
 }
 
 StrokeCorrection StrokeGainMap::Correction(int texture, synth::ProbeStyle style, double width_mm,
                                            double speed_mm_s, double pressure) const {
-  if (texture < 0 || texture >= static_cast<int>(corrections_.size())) return {};
-  const auto& table = corrections_[static_cast<std::size_t>(texture)];
-  StrokeCorrection c = InterpolateLevels(table, style, width_mm, speed_mm_s, pressure);
+  if (texture < 0 || texture >= static_cast<int>(levels_.size())) return {};
+  const auto& own = levels_[static_cast<std::size_t>(texture)];
+  if (own.sound_lufs.empty()) return {};
+  const StrokeCorrection level =
+      InterpolateLevels(own, style, width_mm, speed_mm_s, pressure, LevelBlend::kPower);
+  const StrokeCorrection reference =
+      InterpolateLevels(reference_, style, width_mm, speed_mm_s, pressure, LevelBlend::kPower);
+  StrokeCorrection c{reference.sound_db - level.sound_db, reference.haptic_db - level.haptic_db};
   c.sound_db = std::clamp(c.sound_db, -kMaxStrokeCorrectionDb, kMaxStrokeCorrectionDb);
   c.haptic_db = std::clamp(c.haptic_db, -kMaxStrokeCorrectionDb, kMaxStrokeCorrectionDb);
   return c;

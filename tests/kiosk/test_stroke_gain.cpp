@@ -96,6 +96,44 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "between grid points the sound correction takes the power average of a texture's levels (a "
+    "loud regime dominates a near-silent one) and the vibration correction the dB average",
+    "[kiosk]") {
+  // Two textures at -30 dB everywhere and one that sticks, quiet (-45 dB), at the slow speed and
+  // is at -30 at the fast one: the reference (median, within reach of all) is -30 everywhere.
+  const auto flat = [](double level) {
+    StrokeLevelTable t = Table(0.0);
+    for (auto& v : t.sound_lufs) v = level;
+    for (auto& v : t.haptic_rms_db) v = level;
+    return t;
+  };
+  const StrokeLevelTable steady = flat(-30.0);
+  StrokeLevelTable sticking = flat(-30.0);
+  for (int style = 0; style < 2; ++style) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      for (std::size_t p = 0; p < 2; ++p) {
+        sticking.sound_lufs[sticking.Index(style, w, 0, p)] = -45.0;
+        sticking.haptic_rms_db[sticking.Index(style, w, 0, p)] = -45.0;
+      }
+    }
+  }
+  const StrokeGainMap map({&steady, &sticking, &steady});
+  // Halfway in log speed between 40 and 400 mm/s. Sound: the level is the mean of the powers,
+  // 10 log10((10^-4.5 + 10^-3) / 2) = -32.8 dB, so the correction is +2.8 dB, not the +7.5 dB the
+  // dB mean (-37.5) would give; vibration keeps the dB mean.
+  const double mid = std::sqrt(40.0 * 400.0);
+  const auto c = map.Correction(1, ProbeStyle::kRub, 4.0, mid, 0.45);
+  CHECK(c.sound_db ==
+        Approx(-30.0 - 10.0 * std::log10(0.5 * (std::pow(10.0, -4.5) + 1e-3))).margin(1e-9));
+  CHECK(c.haptic_db == Approx(7.5).margin(1e-9));
+  // At the grid points both blends give the table's own levels: +15 dB and 0 dB.
+  CHECK(map.Correction(1, ProbeStyle::kRub, 4.0, 40.0, 0.45).sound_db == Approx(15.0).margin(1e-9));
+  CHECK(map.Correction(1, ProbeStyle::kRub, 4.0, 400.0, 0.45).sound_db == Approx(0.0).margin(1e-9));
+  // The steady textures need nothing anywhere.
+  CHECK(map.Correction(0, ProbeStyle::kRub, 4.0, mid, 0.45).sound_db == Approx(0.0).margin(1e-9));
+}
+
+TEST_CASE(
     "the stroke tracker takes the hover speed at touch-down, smooths while down and holds while "
     "up",
     "[kiosk]") {

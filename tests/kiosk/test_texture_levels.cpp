@@ -264,18 +264,19 @@ TEST_CASE(
 // and exercise no other code than the grid check, so that build leaves them out.
 #if !defined(__SANITIZE_ADDRESS__)
 // Held-out strokes are not matched within 1 dB. Measured (mean over 24 places, sound / vibration):
-// rubs at pressure 0.35-0.55 0.3-2.6 / 1.5-7.0 dB; scrapes 2.4-4.6 / 3.3-8.5 dB; below the grid's
-// pressures (0.22, 0.25) 2.5 / 16.9 dB and 10.0 / 6.5 dB. The largest misses are regime changes
-// the table's interpolation cannot follow: broken glass squeaks in some speed and pressure ranges
-// and sticks quietly in others (a rub at 60 mm/s p0.25: +10 dB sound, corrected for its quiet
-// p0.3 level) and its vibration comes only from cracks crossed. At a single place the same stroke
-// differs by up to 21 / 37 dB. The bounds are the measured worst plus ~0.5 dB, so a change that
-// makes a stroke jump still shows. README, "Textures, loudness matching and spoken cues".
-constexpr double kHeldOutSoundLimitDb = 10.5;
+// rubs at pressure 0.35-0.55 0.8-2.8 / 1.5-7.0 dB; scrapes 2.1-5.4 / 3.3-8.5 dB; below the grid's
+// pressures (0.22, 0.25) 2.8 / 16.9 dB and 1.0 / 6.5 dB. The largest misses are broken glass's:
+// it squeaks in some speed and pressure ranges and sticks quietly in others (the slow 55 mm/s
+// scrape: 5 dB louder than the others; a rub at 60 mm/s p0.25 was 10 dB louder before the sound
+// levels were interpolated as powers, stroke_gain.h) and its vibration comes only from cracks
+// crossed. At a single place the same stroke differs by up to 21 / 37 dB. The bounds are the
+// measured worst plus ~0.5 dB, so a change that makes a stroke jump still shows. README,
+// "Textures, loudness matching and spoken cues".
+constexpr double kHeldOutSoundLimitDb = 5.9;
 constexpr double kHeldOutHapticLimitDb = 17.4;
 
 TEST_CASE(
-    "each held-out stroke (mean over 24 new places) is within 10.5 dB in loudness and 17.4 dB in "
+    "each held-out stroke (mean over 24 new places) is within 5.9 dB in loudness and 17.4 dB in "
     "vibration on the four textures through the kiosk engine (1 dB not reached)",
     "[kiosk][render]") {
   LevelMeasurement measurement;
