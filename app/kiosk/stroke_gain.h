@@ -9,8 +9,8 @@
 // surface::StrokeLevelTable), and the kiosk corrects every stroke by the difference between the
 // reference level for that stroke and the texture's own:
 //
-//   reference(style, speed, pressure) = median over the loaded textures' tables (dB), moved just
-//                                       enough that every texture reaches it within
+//   reference(style, width, speed,    = median over the loaded textures' tables (dB), moved just
+//             pressure)                 enough that every texture reaches it within
 //                                       kMaxStrokeCorrectionDb
 //   correction(texture, ...)          = reference - table(texture), each interpolated
 //

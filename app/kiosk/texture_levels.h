@@ -66,7 +66,7 @@ struct VisitorStroke {
 
 // The calibration grid: probe widths (the pen's tilt: kiosk/gesture.h), pen speeds (mm/s) and
 // pressures, for scrape (pen upright to ~17°, a 0.3–2 mm point) and rub (pen tilted further, a
-// 2–6 mm wide probe). 40–350 mm/s spans slow to fast strokes; pressure 0.15–0.6 stays below the
+// 2–6 mm wide probe). 40–350 mm/s spans slow to fast strokes; pressure 0.3–0.6 stays below the
 // bubbles' pop force, so bubble wrap is stroked, not popped. Each axis is there because a level
 // depends on it differently from texture to texture: wood's grain is louder under a narrow point
 // and its scrape jumps by up to 17 dB between pressure 0.3 and 0.6 (the point starts to dig into

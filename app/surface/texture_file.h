@@ -13,7 +13,7 @@
 //   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
 //            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
 //   [levels] scrape_widths_mm = [0.3, 0.9, 1.9]   rub_widths_mm = [2.1, 4.0, 6.0]   # optional
-//            speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.15, 0.3, 0.45, 0.6]
+//            speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.3, 0.45, 0.6]
 //            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
 //            rub_haptic_rms_db = [...]   # widths x speeds x pressures values each, width-major:
 //            the texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
@@ -41,7 +41,7 @@ struct TextureGains {
 // The texture's loudness (ch 1, LUFS) and vibration strength (ch 2, dB RMS) at its [gains] over a
 // grid of strokes: style (scrape, rub) x pen speed x pen pressure, measured by the texture
 // generator (kiosk/texture_levels.h); the kiosk's per-stroke gains are computed from it
-// (kiosk/stroke_gain.h). Values are [style][speed][pressure], flattened in that order.
+// (kiosk/stroke_gain.h). Values are [style][width][speed][pressure], flattened in that order.
 struct StrokeLevelTable {
   static constexpr int kStyles = 2;      // 0 scrape, 1 rub
   std::vector<double> scrape_widths_mm;  // probe widths of each style, strictly increasing, > 0;
