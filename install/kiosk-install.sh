@@ -76,16 +76,15 @@ uninstall_kiosk() {
   [ -f "$manifest" ] && mapfile -t files < "$manifest"
   [ -f "$created_dirs" ] && mapfile -t dirs < <(sort -r "$created_dirs")  # deepest first
   if [ -f "$prefix/share/sketch-a-scratch/kiosk-provision.sh" ]; then
-    SAS_SHARE_DIR="$prefix/share/sketch-a-scratch" \
-      sh "$prefix/share/sketch-a-scratch/kiosk-provision.sh" remove
+    sh "$prefix/share/sketch-a-scratch/kiosk-provision.sh" stop
   else
-    SAS_SHARE_DIR="$repo/install" sh "$repo/install/kiosk-provision.sh" remove
+    sh "$repo/install/kiosk-provision.sh" stop
   fi
   local file dir
   for file in "${files[@]}"; do rm -f "$file"; done
   for dir in "${dirs[@]}"; do rmdir "$dir" 2>/dev/null || true; done
-  if command -v udevadm >/dev/null 2>&1 && [ -d /run/udev ]; then udevadm control --reload-rules || true; fi
-  if [ -d /run/systemd/system ]; then systemctl daemon-reload || true; fi
+  # The same as the .deb's purge: unit disabled, configuration, counters and kiosk user gone.
+  sh "$repo/install/debian/postrm" purge
   echo "kiosk-install.sh: removed ${#files[@]} installed files, the kiosk user, configuration and unit"
 }
 

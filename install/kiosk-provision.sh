@@ -1,8 +1,9 @@
 #!/bin/sh
-# Sets up (configure) or tears down (remove) everything around the installed files that turns a
-# Debian 12 machine into the kiosk: the kiosk user and its groups, the staff-editable
-# configuration, udev and systemd. Shared by install/kiosk-install.sh and the .deb's maintainer
-# scripts so both do exactly the same. Idempotent; POSIX sh (dpkg runs it without bash).
+# Sets up (configure) everything around the installed files that turns a Debian 12 machine into
+# the kiosk: the kiosk user and its groups, the staff-editable configuration, udev and systemd;
+# stop stops a running kiosk. Shared by install/kiosk-install.sh and the .deb's maintainer scripts
+# so both do exactly the same; taking it off again is install/debian/postrm (remove, purge), which
+# must work after this file is gone. Idempotent; POSIX sh (dpkg runs it without bash).
 set -eu
 
 user=sas-kiosk
@@ -44,24 +45,14 @@ configure() {
   fi
 }
 
-remove() {
-  if have systemctl; then
-    [ -d /run/systemd/system ] && systemctl stop "$unit" 2>/dev/null || true
-    systemctl disable "$unit" >/dev/null 2>&1 || true
+stop() {
+  if have systemctl && [ -d /run/systemd/system ]; then
+    systemctl stop "$unit" 2>/dev/null || true
   fi
-  rm -rf "$config_dir"
-  if getent passwd "$user" >/dev/null; then userdel "$user" 2>/dev/null || true; fi
-  if getent group "$user" >/dev/null; then groupdel "$user" 2>/dev/null || true; fi
-  if [ -f "$state_dir/created-groups" ]; then
-    while read -r group; do
-      getent group "$group" >/dev/null && groupdel "$group" 2>/dev/null || true
-    done < "$state_dir/created-groups"
-  fi
-  rm -rf "$state_dir" /var/log/sketch-a-scratch
 }
 
 case "${1:-}" in
   configure) configure ;;
-  remove) remove ;;
-  *) echo "usage: kiosk-provision.sh configure|remove" >&2; exit 2 ;;
+  stop) stop ;;
+  *) echo "usage: kiosk-provision.sh configure|stop" >&2; exit 2 ;;
 esac

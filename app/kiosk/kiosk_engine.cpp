@@ -235,6 +235,19 @@ void KioskEngine::LoadCues() {
   message_cues_[static_cast<std::size_t>(Cue::kRecordingTooLoud)] = load("too_loud.wav");
   message_cues_[static_cast<std::size_t>(Cue::kRecordingUnavailable)] = load("no_microphone.wav");
   message_cues_[static_cast<std::size_t>(Cue::kVoiceReady)] = load("voice_ready.wav");
+  // For a blind visitor the cues are the only way to know which texture is under the pen: a box
+  // without them must say so where staff look (journal at warning, staff panel's CUES line).
+  if (options_.spoken_cues) {
+    const int expected = static_cast<int>(texture_keys_.size()) * 2 + 5;
+    const int loaded = static_cast<int>(clips_.size());
+    if (loaded < expected) {
+      platform::DefaultLogger().Warn(
+          "cues", "only " + std::to_string(loaded) + " of " + std::to_string(expected) +
+                      " spoken cues found" +
+                      (cues_dir_.empty() ? " (no cues folder found)" : " in " + cues_dir_) +
+                      "; blind visitors will not hear those texture names and messages");
+    }
+  }
 
   // Staff test signals: 1 kHz at -12 dBFS on the speaker for 1 s; a 2 s exponential sweep
   // 40 -> 800 Hz (the transducer band) at -6 dBFS on ch 2. 10 ms raised-cosine edges.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the kiosk's .deb into a fresh Debian 12 root (debootstrap, minbase), checks that the
-# unit, udev rules, user and configuration land in place, removes it with `apt-get remove`, and
-# checks that nothing the package made is left. Needs root, debootstrap and the Debian archive.
+# unit, udev rules, user and configuration land in place, removes it with `apt-get remove` (the
+# configuration and counters stay), purges it, and checks that nothing the package made is left. Needs root, debootstrap and the Debian archive.
 # With a build directory as third argument it then checks install/kiosk-install.sh in the same
 # root: install, install again (idempotent: nothing changes, the staff's configuration edit
 # survives), --uninstall (nothing left). The repository is bind-mounted at its own path.
@@ -49,6 +49,7 @@ for path in usr/bin/sketch-a-scratch usr/lib/systemd/system/sketch-a-scratch.ser
             usr/lib/modprobe.d/sketch-a-scratch.conf usr/share/man/man1/sketch-a-scratch.1.gz \
             usr/share/sketch-a-scratch/materials/wood.toml \
             usr/share/sketch-a-scratch/textures/wooden_board/picture.png \
+            usr/share/sketch-a-scratch/cues/wooden_board_name.wav \
             etc/systemd/system/multi-user.target.wants/sketch-a-scratch.service; do
   if [ -e "$root/$path" ] || [ -L "$root/$path" ]; then echo "installed: /$path"; else echo "MISSING: /$path"; fail=1; fi
 done
@@ -72,12 +73,18 @@ else
   echo "FAIL: installed unit: $exposure"; fail=1
 fi
 
+echo "counted = 1" > "$root/var/lib/sketch-a-scratch/counters.toml"  # stands for the usage counters
 in_root apt-get remove -y -q sketch-a-scratch >/dev/null
+for path in etc/sketch-a-scratch/kiosk.toml var/lib/sketch-a-scratch/counters.toml; do
+  if [ -e "$root/$path" ]; then echo "apt-get remove kept /$path"; else echo "FAIL: apt-get remove deleted /$path"; fail=1; fi
+done
+[ -e "$root/usr/bin/sketch-a-scratch" ] && { echo "FAIL: apt-get remove left the binary"; fail=1; }
+in_root apt-get purge -y -q sketch-a-scratch >/dev/null
 snapshot > "$work/after.txt"
 if ! diff "$work/before.txt" "$work/after.txt"; then
-  echo "FAIL: apt-get remove left the differences above"; fail=1
+  echo "FAIL: apt-get purge left the differences above"; fail=1
 else
-  echo "apt-get remove left nothing behind"
+  echo "apt-get purge left nothing behind"
 fi
 
 if [ -n "$build_dir" ]; then

@@ -1,0 +1,322 @@
+#!/usr/bin/env bash
+# The appliance boot test: the installed product, not the build tree. Builds the .deb, makes a
+# Debian 12 image with Debian's own tools (mmdebstrap; the base is cached), installs the .deb into
+# it with apt (its declared dependencies are what installs it), follows the staff guide (the
+# configuration edits staff make), then boots the image with Debian's kernel under QEMU, systemd
+# as PID 1 and the shipped unit unchanged: QEMU's standard VGA as the DRM display (the unit's
+# KMSDRM path), snd-aloop as the sound card (speaker + transducer out, microphone in), a uinput
+# pen display with pressure and tilt, a uinput keyboard and a uhid MCP2221A token board
+# (tests/appliance/fake_devices.cpp). tests/appliance/guest/visitor.sh plays the visitor, the staff
+# and the installer inside; this script takes the screenshots it asks for (QEMU monitor
+# screendump) and checks the screen, the loopback capture, the journal and the guest's disk.
+#
+#   sudo bash tests/appliance/boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR]
+#
+# Exits 0 only if every check passes; writes DIR/report.md (each check, pass/fail, the figures)
+# and the screenshots (default DIR: <build dir>/appliance-report). The base image is cached in
+# --cache (default /var/cache/sketch-a-scratch-boot-test, or $SAS_BOOT_TEST_CACHE) and rebuilt
+# when absent or when its package list changes; apt's downloads are cached there too.
+# Needs root (chroot, image ownership), the Debian archive, qemu-system-x86, mmdebstrap,
+# e2fsprogs and ImageMagick (install/packages.txt, test group).
+set -uo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+build_dir="$repo/build"
+out=""
+cache="${SAS_BOOT_TEST_CACHE:-/var/cache/sketch-a-scratch-boot-test}"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build-dir) build_dir="$2"; shift ;;
+    --out) out="$2"; shift ;;
+    --cache) cache="$2"; shift ;;
+    *) echo "usage: boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR]" >&2; exit 2 ;;
+  esac
+  shift
+done
+build_dir="$(cd "$build_dir" && pwd)" || exit 2
+out="${out:-$build_dir/appliance-report}"
+die() { echo "boot-test: $*" >&2; exit 1; }
+[ "$(id -u)" -eq 0 ] || die "needs root (chroot and image files owned by the guest's users)"
+for tool in qemu-system-x86_64 mmdebstrap mke2fs convert cpack; do
+  command -v "$tool" >/dev/null || die "$tool missing (install/packages.txt, test group)"
+done
+
+started=$(date +%s)
+elapsed() { echo $(($(date +%s) - started)); }
+work="$(mktemp -d /var/tmp/sas-boot-test.XXXXXX)"
+root="$work/root"
+share="$work/share"
+qemu_pid=""
+cleanup() {
+  [ -n "$qemu_pid" ] && kill "$qemu_pid" 2>/dev/null
+  umount "$root/var/cache/apt/archives" 2>/dev/null
+  umount "$root/proc" 2>/dev/null
+  if [ -n "${SAS_BOOT_TEST_KEEP:-}" ]; then echo "boot-test: kept $work"; else rm -rf "$work"; fi
+}
+trap cleanup EXIT
+rm -rf "$out"
+mkdir -p "$out" "$share/out" "$share/bin" "$share/pkg" "$cache/apt-archives"
+report="$out/report.md"
+declare -a rows=()
+failures=0
+row() {  # row PASS|FAIL <check> <details>
+  rows+=("| $2 | $1 | $3 |")
+  [ "$1" = PASS ] || failures=$((failures + 1))
+  echo "boot-test: $1 $2 - $3"
+}
+phase() { echo "boot-test: [$(elapsed) s] $*"; }
+
+# ------------------------------------------------------------------ the package and the tools
+phase "building the .deb and the test tools in $build_dir"
+[ "$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$build_dir/CMakeCache.txt")" = /usr ] ||
+  die "$build_dir is not configured with CMAKE_INSTALL_PREFIX=/usr"
+cmake --build "$build_dir" -j "$(nproc)" --target sketch-a-scratch cues fake_devices appliance_check \
+  kiosk_e2e_tool >/dev/null || die "build failed"
+rm -f "$build_dir"/sketch-a-scratch_*.deb
+(cd "$build_dir" && cpack -G DEB >/dev/null) || die "cpack failed"
+deb=$(ls "$build_dir"/sketch-a-scratch_*.deb)
+version=$(dpkg-deb -f "$deb" Version)
+check="$build_dir/tests/appliance/appliance_check"
+e2e_tool="$build_dir/tests/e2e/kiosk_e2e_tool"
+cp "$build_dir/tests/appliance/fake_devices" "$share/bin/"
+# SAS_BOOT_TEST_VISITOR: another guest script, for looking into a failure by hand.
+cp "${SAS_BOOT_TEST_VISITOR:-$repo/tests/appliance/guest/visitor.sh}" "$share/visitor.sh"
+# A newer version of the same package, for the upgrade: repacked with a higher version number.
+mkdir "$work/newer"
+dpkg-deb -R "$deb" "$work/newer/pkg"
+sed -i "s/^Version: .*/Version: ${version}+boottest1/" "$work/newer/pkg/DEBIAN/control"
+dpkg-deb -b --root-owner-group "$work/newer/pkg" "$share/pkg/newer.deb" >/dev/null || die "repack failed"
+echo "${version}+boottest1" >"$share/pkg/newer.version"
+# The visitor's voice for the microphone and, at another level, the core-dump control's samples.
+espeak-ng -w "$work/speech.wav" "Hello museum, this is my voice, scratch it please" 2>/dev/null ||
+  die "espeak-ng could not speak"
+"$check" voice "$work/speech.wav" 0.5 "$share/voice" >/dev/null || die "voice preparation"
+"$check" voice "$work/speech.wav" 0.3 "$work/control" >/dev/null || die "control preparation"
+cp "$work/control.f32" "$share/control.f32"
+
+# ------------------------------------------------------------------ the image
+# The cached base: what a Debian 12 box has before the kiosk (systemd, udev, logind, the kernel,
+# ALSA's tools) plus systemd-coredump, so that a core dump would be kept if one were made.
+base_packages="systemd,systemd-sysv,udev,dbus,libpam-systemd,linux-image-amd64,kmod,alsa-utils,systemd-coredump,procps"
+key=$(echo "bookworm $base_packages v1" | sha256sum | cut -c1-16)
+base="$cache/base-$key.tar"
+if [ ! -s "$base" ]; then
+  phase "making the base image (no cache at $base)"
+  mmdebstrap --variant=minbase --include="$base_packages" bookworm "$base.part.tar" \
+    http://deb.debian.org/debian >"$work/mmdebstrap.log" 2>&1 ||
+    { tail -20 "$work/mmdebstrap.log"; die "mmdebstrap failed"; }
+  mv "$base.part.tar" "$base"
+  image_cache="built"
+else
+  image_cache="cached"
+fi
+phase "installing $(basename "$deb") with apt into the image (base $image_cache)"
+mkdir -p "$root"
+tar -C "$root" -xf "$base" || die "cannot unpack $base"
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+mount --bind "$cache/apt-archives" "$root/var/cache/apt/archives"
+mount -t proc proc "$root/proc"
+cp "$deb" "$root/tmp/"
+in_root() { chroot "$root" env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive "$@"; }
+# As the staff guide says: `apt-get install ./sketch-a-scratch_<version>_amd64.deb`.
+if in_root sh -c "apt-get update -q && apt-get install -y -q /tmp/$(basename "$deb")" >"$out/apt-install.log" 2>&1; then
+  row PASS apt_install "$(grep -c '^Setting up' "$out/apt-install.log") packages set up from the .deb's dependencies"
+else
+  tail -20 "$out/apt-install.log"
+  die "apt-get install of the .deb failed"
+fi
+umount "$root/proc" "$root/var/cache/apt/archives"
+rm -f "$root/tmp/$(basename "$deb")"
+# The staff guide's configuration step: staff edit /etc/sketch-a-scratch/kiosk.toml. A short
+# idle timeout keeps the test short; the audio device is the box's card, by name.
+config="$root/etc/sketch-a-scratch/kiosk.toml"
+[ -f "$config" ] || die "the package made no $config"
+sed -i 's/^idle_timeout_s = .*/idle_timeout_s = 10/' "$config"
+sed -i 's/^output_device = .*/output_device = "hw:CARD=Loopback,DEV=0"/; s/^input_device = .*/input_device = "hw:CARD=Loopback,DEV=0"/' "$config"
+echo "# staff edit: kept across upgrades" >>"$config"
+
+# The test harness's own parts (not the product's): the shared folder, the sound card and
+# virtual-device modules, the fake devices (before the kiosk, as a box's hardware is there at
+# power-on), the visitor (after it), core dumps kept uncompressed so the disk search sees them.
+mkdir -p "$root/mnt/sas" "$root/etc/systemd/coredump.conf.d"
+echo "sas /mnt/sas 9p trans=virtio,version=9p2000.L,msize=262144 0 0" >>"$root/etc/fstab"
+printf 'snd-aloop\nuinput\nuhid\n' >"$root/etc/modules-load.d/sas-boot-test.conf"
+printf '[Coredump]\nStorage=external\nCompress=no\n' >"$root/etc/systemd/coredump.conf.d/sas-boot-test.conf"
+cat >"$root/etc/systemd/system/sas-fake-devices.service" <<'EOF'
+[Unit]
+Description=boot test: the visitor's pen display, keyboard and MCP2221A token board
+RequiresMountsFor=/mnt/sas
+After=systemd-modules-load.service
+Before=sketch-a-scratch.service
+[Service]
+RuntimeDirectory=sas-fake
+ExecStartPre=/usr/bin/mkfifo /run/sas-fake/ctl
+ExecStart=/mnt/sas/bin/fake_devices /run/sas-fake/ctl /run/sas-fake/status
+ExecStartPost=/bin/sh -c 'printf "pen plug\\nkeyboard plug\\nboard plug\\n" >/run/sas-fake/ctl; for i in $(seq 100); do [ "$(grep -c ^ok /run/sas-fake/status 2>/dev/null)" -ge 3 ] && break; sleep 0.1; done; udevadm settle -t 20'
+[Install]
+WantedBy=multi-user.target
+EOF
+cat >"$root/etc/systemd/system/sas-visitor.service" <<'EOF'
+[Unit]
+Description=boot test: the visitor
+RequiresMountsFor=/mnt/sas
+After=sketch-a-scratch.service sas-fake-devices.service
+[Service]
+Type=oneshot
+ExecStart=/bin/bash /mnt/sas/visitor.sh
+[Install]
+WantedBy=multi-user.target
+EOF
+for unit in sas-fake-devices sas-visitor; do
+  ln -sf "/etc/systemd/system/$unit.service" "$root/etc/systemd/system/multi-user.target.wants/$unit.service"
+done
+kernel=$(ls "$root"/boot/vmlinuz-* | head -1)
+initrd=$(ls "$root"/boot/initrd.img-* | head -1)
+cp "$kernel" "$work/vmlinuz"
+cp "$initrd" "$work/initrd.img"
+phase "writing the disk image"
+mke2fs -q -t ext4 -d "$root" -F "$work/disk.img" 4G || die "mke2fs failed"
+rm -rf "$root"
+prepare_s=$(elapsed)
+
+# ------------------------------------------------------------------ boot and serve the guest
+# TCG: these machines' /dev/kvm does not run a guest (QEMU aborts setting an MSR with -cpu host
+# and hangs without it); SAS_BOOT_TEST_ACCEL=kvm tries it where it works.
+accel="${SAS_BOOT_TEST_ACCEL:-tcg,thread=multi}"
+mkfifo "$work/mon.in" "$work/mon.out"
+phase "booting the image (QEMU, accel $accel)"
+qemu-system-x86_64 -accel "$accel" -m 2048 -smp 2 -no-reboot -nic none \
+  -kernel "$work/vmlinuz" -initrd "$work/initrd.img" \
+  -append "root=/dev/vda rw console=ttyS0 quiet" \
+  -drive "file=$work/disk.img,format=raw,if=virtio" -vga std -display none \
+  -serial "file:$out/serial.log" \
+  -chardev "pipe,id=mon,path=$work/mon" -mon chardev=mon,mode=readline \
+  -virtfs "local,path=$share,mount_tag=sas,security_model=none" >"$out/qemu.log" 2>&1 &
+qemu_pid=$!
+boot_t0=$(date +%s.%N)
+cat "$work/mon.out" >"$work/monitor.log" &
+exec 5>"$work/mon.in"
+shots="$share/out/shots"
+mkdir -p "$shots"
+screendump() {  # screendump FILE.ppm: waits until QEMU has written it
+  rm -f "$1"
+  echo "screendump $1" >&5
+  for _ in $(seq 100); do
+    [ -s "$1" ] && sleep 0.2 && return 0
+    sleep 0.05
+  done
+  return 1
+}
+texture_pictures() {  # the wanted texture's installed picture first, then the others
+  local t
+  echo "$repo/textures/$1/picture.png"
+  for t in bubble_wrap wooden_board broken_glass cracked_ground; do
+    [ "$t" = "$1" ] || echo "$repo/textures/$t/picture.png"
+  done
+}
+boot_to_texture=""
+limit_s=$((${SAS_BOOT_TEST_TIMEOUT_S:-1200}))
+while kill -0 "$qemu_pid" 2>/dev/null; do
+  now_s=$(awk -v a="$(date +%s.%N)" -v b="$boot_t0" 'BEGIN { printf "%.1f", a - b }')
+  # Power-on to texture: the first screen that shows the default texture.
+  if [ -z "$boot_to_texture" ] && screendump "$work/boot.ppm" &&
+     convert "$work/boot.ppm" "$work/boot.png" 2>/dev/null &&
+     "$e2e_tool" matches "$work/boot.png" $(texture_pictures wooden_board) >/dev/null 2>&1; then
+    boot_to_texture=$now_s
+    cp "$work/boot.png" "$out/boot.png"
+    phase "default texture on screen ${now_s} s after QEMU started"
+  fi
+  for request in "$share/out/req"/*; do
+    [ -e "$request" ] || continue
+    name=$(basename "$request")
+    screendump "$shots/$name.ppm" || echo "boot-test: screendump $name failed"
+    convert "$shots/$name.ppm" "$out/$name.png" 2>/dev/null
+    rm -f "$request"
+    touch "$share/out/ack/$name"
+  done
+  if awk -v n="$now_s" -v l="$limit_s" 'BEGIN { exit !(n > l) }'; then
+    echo "boot-test: the guest did not finish within $limit_s s"
+    kill "$qemu_pid"
+    break
+  fi
+  sleep 0.3
+done
+wait "$qemu_pid" 2>/dev/null
+qemu_pid=""
+exec 5>&-
+vm_s=$(($(elapsed) - prepare_s))
+phase "the guest powered off"
+
+# ------------------------------------------------------------------ checks on what came back
+results="$share/out/results.txt"
+cp "$share/out/guest.log" "$share/out/journal.txt" "$out/" 2>/dev/null
+[ -s "$results" ] || row FAIL guest_ran "the visitor wrote no results (see serial.log, guest.log)"
+value() { sed -n "s/^value $1 //p" "$results" | tail -1; }
+while read -r verdict name details; do
+  row "$verdict" "$name" "$details"
+done < <(grep -E '^(PASS|FAIL) ' "$results" 2>/dev/null)
+visitor_finished=$(grep -c 'visitor done' "$share/out/guest.log" 2>/dev/null)
+[ "${visitor_finished:-0}" -ge 1 ] && row PASS visitor_finished "every step ran" ||
+  row FAIL visitor_finished "the visitor stopped early (guest.log)"
+
+if [ -n "$boot_to_texture" ]; then
+  row PASS boot_to_texture "QEMU start to the default texture on screen: ${boot_to_texture} s (TCG); kiosk READY at $(value ready_uptime_s) s of guest uptime"
+else
+  row FAIL boot_to_texture "the default texture never appeared on screen"
+fi
+shot_check() {  # shot_check <check> <details> <command...>
+  local name=$1 details=$2 output
+  shift 2
+  if output=$("$@" 2>&1); then row PASS "$name" "$details; $(echo "$output" | tail -1)"
+  else row FAIL "$name" "$details; $(echo "$output" | tr '\n' ' ')"; fi
+}
+read -r width height < <(identify -format '%w %h\n' "$out/dent.png" 2>/dev/null || echo "0 0")
+shot_check screen_texture "explore.png, ${width}x${height}" \
+  "$e2e_tool" matches "$out/explore.png" $(texture_pictures wooden_board)
+# The drag ends at (0.60, 0.55) of the screen, where the pen still is when the dent is taken.
+shot_check screen_dent "dent.png at the pen ($((width * 60 / 100)), $((height * 55 / 100)))" \
+  "$e2e_tool" dent "$out/dent.png" "$repo/textures/wooden_board/picture.png" \
+  $((width * 60 / 100)) $((height * 55 / 100))
+shot_check screen_token "token.png" "$e2e_tool" matches "$out/token.png" $(texture_pictures broken_glass)
+shot_check screen_voice "voice.png" "$e2e_tool" voice "$out/voice.png"
+capture="$share/out/capture.f32"
+shot_check sound_stroke "capture of the stroke" \
+  "$check" stroke "$capture" "$(value mark_stroke_down)" "$(value mark_stroke_lift)" "$(value mark_stroke_quiet)"
+shot_check sound_stroke_after_replug "capture of the stroke after the pen came back" \
+  "$check" stroke "$capture" "$(value mark_stroke2_down)" "$(value mark_stroke2_lift)" "$(value mark_stroke2_quiet)"
+cues="$share/out/cues"
+shot_check cue_heard "installed broken_glass_name.wav on the speaker after the token" \
+  "$check" cue "$capture" "$(value mark_token_on)" "$(value mark_token_cue_end)" \
+  "$cues/broken_glass_name.wav" "$cues/bubble_wrap_name.wav" "$cues/wooden_board_name.wav" \
+  "$cues/cracked_ground_name.wav"
+# The staff panel: a lost device's line turns amber; back, it is white again.
+amber() { convert "$1" -fx '(abs(r*255-250)<30 && abs(g*255-190)<30 && abs(b*255-60)<40) ? 1 : 0' \
+  -format '%[fx:round(mean*w*h)]' info: 2>/dev/null || echo 0; }
+for device in pen board; do
+  a0=$(amber "$out/panel.png"); a1=$(amber "$out/panel_${device}_lost.png"); a2=$(amber "$out/panel_${device}_back.png")
+  if [ "$a1" -gt $((a0 + 200)) ] && [ "$a2" -lt $((a1 - 200)) ]; then
+    row PASS "staff_panel_${device}" "amber pixels on the panel: ${a0} before, ${a1} unplugged, ${a2} back"
+  else
+    row FAIL "staff_panel_${device}" "amber pixels on the panel: ${a0} before, ${a1} unplugged, ${a2} back"
+  fi
+done
+# The voice: no byte of it anywhere on the guest's disk (files, journal, free blocks, core
+# dumps); the control's samples, held by a crashed process allowed to dump, are found.
+shot_check voice_not_on_disk "disk image" "$check" find absent "$work/disk.img" "$share/voice.f32"
+shot_check core_control_on_disk "disk image" "$check" find present "$work/disk.img" "$share/control.f32"
+
+total_s=$(elapsed)
+{
+  echo "# Appliance boot test"
+  echo
+  echo "Package $(basename "$deb"), base image $image_cache, QEMU accel $accel. Wall time: ${total_s} s"
+  echo "(image and package ${prepare_s} s, VM ${vm_s} s). Checks failed: ${failures}."
+  echo
+  echo "| check | result | figures |"
+  echo "|---|---|---|"
+  printf '%s\n' "${rows[@]}"
+  echo
+  echo "Screenshots: $(cd "$out" && ls ./*.png 2>/dev/null | tr '\n' ' ')"
+} >"$report"
+cat "$report"
+[ "$failures" -eq 0 ]
