@@ -10,9 +10,7 @@
 #include "live_kiosk.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -21,6 +19,7 @@
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
+#include "kiosk/kiosk_signals.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/common/clock.h"
@@ -40,12 +39,6 @@ namespace sas::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_stop{false};
-
-void OnSignal(int /*signal*/) {
-  g_stop.store(true);
-}
 
 struct KioskArgs {
   std::string config_path = "/etc/sketch-a-scratch/kiosk.toml";
@@ -225,6 +218,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
+  // SIGHUP (the unit's reload) would otherwise end the kiosk and lose the counters since the
+  // last save; the loop saves them instead (one arriving while the textures load waits for the
+  // first pass). A closed stdout/stderr pipe must not end it either.
+  kiosk::CatchHangupAndIgnoreWriteSignals();
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
@@ -259,11 +256,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return 1;
   }
   const int width = window.width_px(), height = window.height_px();
-  std::signal(SIGTERM, OnSignal);
-  std::signal(SIGINT, OnSignal);
-  // A file-size limit (or a full disk) must fail the write, not kill the kiosk: the counters and
-  // the log then report it and carry on.
-  std::signal(SIGXFSZ, SIG_IGN);
+  kiosk::CatchStopSignals();
 
   kiosk::KioskEngineOptions engine_options;
   engine_options.config = config;
@@ -396,7 +389,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
 
-  while (!g_stop.load()) {
+  while (!kiosk::StopRequested()) {
+    if (kiosk::TakeHangupRequest()) control.Hangup();
     const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;
