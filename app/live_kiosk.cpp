@@ -5,8 +5,9 @@
 // events -> switch events (TokenSelector) -> engine.Tick (session timers, recording, switches) ->
 // audio supervisor Poll (reopens a lost device; the engine is told whether a callback runs) ->
 // view.Advance and Present only when a frame is due -> watchdog ping when every thread is alive.
-// The loop sleeps in SDL's event wait (2 ms with a pen tablet, whose events come from libinput's
-// thread, so a pen event waits at most that long; longer with mouse/touch, which wake it).
+// The loop sleeps in SDL's event wait (2 ms while a pen tablet is connected, whose events come
+// from libinput's thread, so a pen event waits at most that long; longer with mouse/touch, which
+// wake it).
 #include "live_kiosk.h"
 
 #include <algorithm>
@@ -340,7 +341,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   watchdog.Ready("exploring");
   std::fprintf(out, "kiosk ready %dx%d %s, audio %s, pen %s, switches %s\n", width, height,
                window.driver().c_str(), output->Running() ? "running" : "silent",
-               pen ? "libinput" : "mouse/touch", switches.ActiveBackend());
+               pen ? (pen->Connected() ? "libinput" : "mouse/touch (libinput waiting for a tablet)")
+                   : "mouse/touch",
+               switches.ActiveBackend());
   std::fflush(out);
 
   StaffPanel staff;
@@ -391,7 +394,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
 
   while (!kiosk::StopRequested()) {
     if (kiosk::TakeHangupRequest()) control.Hangup();
-    const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen ? 2 : 8);
+    const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen && pen->Connected() ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;
       switch (event.kind) {

@@ -49,7 +49,7 @@ void TuneAllocatorForLongRuns();
 
 struct KioskDevices {
   platform::AudioOutput* output = nullptr;     // required
-  platform::PenSource* pen = nullptr;          // null: no tablet at start (mouse/touch)
+  platform::PenSource* pen = nullptr;          // null: no libinput at all (mouse/touch)
   platform::SwitchInputs* switches = nullptr;  // required
 };
 

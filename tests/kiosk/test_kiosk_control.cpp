@@ -1,5 +1,6 @@
-// The kiosk's control loop body (KioskControl) with the real engine and no devices: what a SIGHUP
-// does to the usage counters; and the process's signal set-up (kiosk_signals.h).
+// The kiosk's control loop body (KioskControl) with the real engine and fake devices: what a
+// SIGHUP does to the usage counters, a tablet plugged in after start; and the process's signal
+// set-up (kiosk_signals.h).
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
 #include "platform/audio/audio_output.h"
+#include "platform/pen/pen_source.h"
 #include "support/temp_dir.h"
 
 using namespace sas;
@@ -136,4 +138,45 @@ TEST_CASE(
   CHECK(error == EPIPE);
 
   for (int i = 0; i < 5; ++i) sigaction(signals[i], &saved[i], nullptr);
+}
+
+TEST_CASE(
+    "control: with no tablet at start mouse/touch drive the kiosk, and a tablet plugged in later "
+    "takes over with its events reaching the loop",
+    "[kiosk]") {
+  kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = "/nonexistent";
+  kiosk::KioskEngine engine(options);
+  platform::AudioOutputConfig output_config;
+  platform::OfflineAudioOutput output(engine, output_config);
+  REQUIRE(output.Start());
+  platform::SwitchInputs switches;
+  platform::Logger log;
+  log.SetEchoToStderr(false);
+  platform::DeviceStatusBoard board(log);
+  auto pen = platform::OpenPen(
+      {}, board, std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
+  REQUIRE(pen != nullptr);
+  auto* fake = static_cast<platform::FakePenSource*>(pen.get());
+  kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
+  std::vector<platform::PenEvent> seen;
+  const auto on_pen = [&](const platform::PenEvent& e) { seen.push_back(e); };
+
+  control.Step(1000 * kMs, on_pen);
+  CHECK(control.PointerActive());
+  CHECK(board.Get("pen").state == platform::DeviceState::kMissing);
+
+  fake->Replug(board);
+  platform::PenEvent e;
+  e.time_ns = 1001 * kMs;
+  e.kind = platform::PenEventKind::kTipDown;
+  e.tip_down = e.in_proximity = true;
+  e.pressure = 0.5f;
+  REQUIRE(fake->Push(e));
+  control.Step(1002 * kMs, on_pen);
+  CHECK_FALSE(control.PointerActive());
+  CHECK(board.Get("pen").state == platform::DeviceState::kOk);
+  REQUIRE(seen.size() == 1);
+  CHECK(seen[0].time_ns == 1001 * kMs);
 }
