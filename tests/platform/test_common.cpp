@@ -1,18 +1,23 @@
-// SPSC queue, log ring, the journal priorities and device status board.
+// SPSC queue, log ring, the journal priorities, device status board and memory kept out of core
+// dumps.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cerrno>
 #include <cstdlib>
+#include <memory_resource>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "platform/common/no_dump_buffer.h"
 #include "platform/common/spsc_queue.h"
 #include "platform/device_status.h"
 #include "platform/log/log.h"
+#include "support/smaps.h"
 
 using namespace sas::platform;
 
@@ -201,4 +206,42 @@ TEST_CASE(
   REQUIRE(n > 0);  // only the refused line reached stderr, as the plain line
   CHECK(std::string(buf, static_cast<std::size_t>(n)) ==
         "error display: cannot open the kiosk window\n");
+}
+
+TEST_CASE("a no-dump buffer's pages are marked dd in smaps, and Wipe zeroes every sample",
+          "[platform]") {
+  NoDumpBuffer<float> buffer(240'000);  // 5 s at 48 kHz
+  REQUIRE(buffer.size() == 240'000);
+  CHECK(sas::test::AllDontDump(sas::test::VmFlagsOf(buffer.data(), buffer.size() * sizeof(float))));
+  // The check tells the two apart: an ordinary block of the same size is dumped.
+  std::vector<float> ordinary(240'000, 1.0f);
+  const auto ordinary_flags =
+      sas::test::VmFlagsOf(ordinary.data(), ordinary.size() * sizeof(float));
+  REQUIRE_FALSE(ordinary_flags.empty());
+  CHECK_FALSE(sas::test::AllDontDump(ordinary_flags));
+
+  for (std::size_t i = 0; i < buffer.size(); ++i) buffer[i] = 0.25f + static_cast<float>(i % 7);
+  buffer.Wipe();
+  CHECK(
+      std::all_of(buffer.data(), buffer.data() + buffer.size(), [](float x) { return x == 0.0f; }));
+
+  // Moving hands the pages over; the moved-from buffer holds none.
+  const float* pages = buffer.data();
+  NoDumpBuffer<float> moved(std::move(buffer));
+  CHECK(moved.data() == pages);
+  CHECK(buffer.empty());
+  CHECK(sas::test::AllDontDump(sas::test::VmFlagsOf(moved.data(), moved.size() * sizeof(float))));
+}
+
+TEST_CASE("containers on the no-dump memory resource keep their elements in dd pages",
+          "[platform]") {
+  std::pmr::vector<float> samples(100'000, 0.5f, NoDumpMemory());
+  CHECK(
+      sas::test::AllDontDump(sas::test::VmFlagsOf(samples.data(), samples.size() * sizeof(float))));
+  std::pmr::vector<double> small(3, 1.0, NoDumpMemory());  // less than a page: a page of its own
+  CHECK(sas::test::AllDontDump(sas::test::VmFlagsOf(small.data(), small.size() * sizeof(double))));
+  // A move keeps the resource, and so the pages.
+  std::pmr::vector<float> moved(std::move(samples));
+  CHECK(moved.get_allocator().resource() == NoDumpMemory());
+  CHECK(sas::test::AllDontDump(sas::test::VmFlagsOf(moved.data(), moved.size() * sizeof(float))));
 }
