@@ -5,14 +5,13 @@
 // events -> switch events (TokenSelector) -> engine.Tick (session timers, recording, switches) ->
 // audio supervisor Poll (reopens a lost device; the engine is told whether a callback runs) ->
 // view.Advance and Present only when a frame is due -> watchdog ping when every thread is alive.
-// The loop sleeps in SDL's event wait (2 ms with a pen tablet, whose events come from libinput's
-// thread, so a pen event waits at most that long; longer with mouse/touch, which wake it).
+// The loop sleeps in SDL's event wait (2 ms while a pen tablet is connected, whose events come
+// from libinput's thread, so a pen event waits at most that long; longer with mouse/touch, which
+// wake it).
 #include "live_kiosk.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -21,6 +20,7 @@
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
+#include "kiosk/kiosk_signals.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/common/clock.h"
@@ -40,12 +40,6 @@ namespace sas::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_stop{false};
-
-void OnSignal(int /*signal*/) {
-  g_stop.store(true);
-}
 
 struct KioskArgs {
   std::string config_path = "/etc/sketch-a-scratch/kiosk.toml";
@@ -225,6 +219,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
+  // SIGHUP (the unit's reload) would otherwise end the kiosk and lose the counters since the
+  // last save; the loop saves them instead (one arriving while the textures load waits for the
+  // first pass). A closed stdout/stderr pipe must not end it either.
+  kiosk::CatchHangupAndIgnoreWriteSignals();
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
@@ -259,11 +257,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return 1;
   }
   const int width = window.width_px(), height = window.height_px();
-  std::signal(SIGTERM, OnSignal);
-  std::signal(SIGINT, OnSignal);
-  // A file-size limit (or a full disk) must fail the write, not kill the kiosk: the counters and
-  // the log then report it and carry on.
-  std::signal(SIGXFSZ, SIG_IGN);
+  kiosk::CatchStopSignals();
 
   kiosk::KioskEngineOptions engine_options;
   engine_options.config = config;
@@ -347,7 +341,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   watchdog.Ready("exploring");
   std::fprintf(out, "kiosk ready %dx%d %s, audio %s, pen %s, switches %s\n", width, height,
                window.driver().c_str(), output->Running() ? "running" : "silent",
-               pen ? "libinput" : "mouse/touch", switches.ActiveBackend());
+               pen ? (pen->Connected() ? "libinput" : "mouse/touch (libinput waiting for a tablet)")
+                   : "mouse/touch",
+               switches.ActiveBackend());
   std::fflush(out);
 
   StaffPanel staff;
@@ -396,8 +392,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
 
-  while (!g_stop.load()) {
-    const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen ? 2 : 8);
+  while (!kiosk::StopRequested()) {
+    if (kiosk::TakeHangupRequest()) control.Hangup();
+    const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen && pen->Connected() ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;
       switch (event.kind) {

@@ -26,7 +26,9 @@ struct KioskBackends {
       gpio_events;
 };
 
-// Runs until SIGTERM/SIGINT (systemd's stop). Returns the exit code; 1 when no window opens.
+// Runs until SIGTERM/SIGINT (systemd's stop), saving the usage counters on the way out. SIGHUP
+// saves them at once and the kiosk runs on; SIGPIPE is ignored. Returns the exit code; 1 when no
+// window opens.
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends = {});
 

@@ -49,7 +49,7 @@ void Normalise(std::vector<double>& heights, double relief_m) {
 }
 
 surface::HeightField ToField(const std::vector<double>& heights) {
-  std::vector<float> out(heights.size());
+  std::pmr::vector<float> out(heights.size());
   std::transform(heights.begin(), heights.end(), out.begin(),
                  [](double h) { return static_cast<float>(h); });
   return surface::HeightField(kW, kH, kProfilePitchM, std::move(out));

@@ -99,6 +99,19 @@ bool KioskControl::Shutdown() {
   return saved;
 }
 
+bool KioskControl::Hangup() {
+  // Everything else (devices, textures, gains) was read at start; a reload would need a restart.
+  const std::string config_note =
+      "the configuration is read at start (restart the unit to apply changes)";
+  std::string error;
+  if (!engine_->SaveCounters(&error)) {
+    log_->Warn("kiosk", "SIGHUP: usage counters not saved (" + error + "); " + config_note);
+    return false;
+  }
+  log_->Info("kiosk", "SIGHUP: usage counters saved; " + config_note);
+  return true;
+}
+
 void LogSessionActions(platform::Logger& log, const KioskEngine& engine,
                        const std::vector<SessionAction>& actions) {
   using Kind = SessionAction::Kind;

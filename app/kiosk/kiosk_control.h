@@ -49,7 +49,7 @@ void TuneAllocatorForLongRuns();
 
 struct KioskDevices {
   platform::AudioOutput* output = nullptr;     // required
-  platform::PenSource* pen = nullptr;          // null: no tablet at start (mouse/touch)
+  platform::PenSource* pen = nullptr;          // null: no libinput at all (mouse/touch)
   platform::SwitchInputs* switches = nullptr;  // required
 };
 
@@ -68,6 +68,10 @@ class KioskControl {
   std::vector<SessionAction> Step(std::int64_t now_ns, const PenHandler& on_pen);
   // Clean stop (SIGTERM): counters saved, audio stopped. False when the save failed (logged).
   bool Shutdown();
+  // SIGHUP (the unit's reload): the usage counters are saved now rather than at the next periodic
+  // save, and one journal line says so and that the configuration is only read at start. The
+  // loop goes on. False when the save failed (logged).
+  bool Hangup();
 
   bool record_down() const { return record_down_; }
   const platform::TokenSelector& selector() const { return selector_; }

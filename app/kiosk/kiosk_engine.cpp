@@ -15,6 +15,7 @@
 #include "kiosk/output_gains.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
+#include "platform/common/no_dump_buffer.h"
 #include "platform/log/log.h"
 #include "sas/version.h"
 #include "surface/audio_file.h"
@@ -553,53 +554,55 @@ void KioskEngine::FinishRecording(std::int64_t now_ns) {
   if (!recording_ || recorder_ == nullptr) return;
   recording_ = false;
   recorder_->Stop();
-  platform::VoiceTake take = recorder_->Take();
-  recorder_->Wipe();
+  // The take is a view of the recorder's buffer: used in place, then wiped with it.
+  const platform::VoiceTake take = recorder_->Take();
   RecordingOutcome outcome = RecordingOutcome::kOk;
   if (take.silent) {
     outcome = RecordingOutcome::kSilent;
   } else if (take.clipped) {
     outcome = RecordingOutcome::kClipped;
   } else {
-    outcome = AcceptRecording(now_ns, std::move(take.samples));
+    outcome = AcceptRecording(now_ns, take.samples);
   }
-  std::fill(take.samples.begin(), take.samples.end(), 0.0f);
+  recorder_->Wipe();
   session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9, outcome);
 }
 
-RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/, std::vector<float> samples) {
-  surface::AudioClip clip;
-  clip.sample_rate_hz = options_.config.sample_rate_hz;
-  clip.source_rate_hz = clip.sample_rate_hz;
-  clip.source_channels = 1;
-  clip.samples = std::move(samples);
+RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/,
+                                              std::span<const float> samples) {
+  const double rate_hz = options_.config.sample_rate_hz;
   surface::SoundImageOptions image;
-  image.sample_rate_hz = clip.sample_rate_hz;
-  image.samples_per_row = static_cast<int>(std::lround(0.1 * clip.sample_rate_hz));
+  image.sample_rate_hz = rate_hz;
+  image.samples_per_row = static_cast<int>(std::lround(0.1 * rate_hz));
   image.max_duration_s = options_.config.record_max_duration_s;
   const auto rows = static_cast<int>(
-      (std::min(clip.samples.size(),
-                static_cast<std::size_t>(std::lround(image.max_duration_s * clip.sample_rate_hz))) +
+      (std::min(samples.size(),
+                static_cast<std::size_t>(std::lround(image.max_duration_s * rate_hz))) +
        static_cast<std::size_t>(image.samples_per_row) - 1) /
       static_cast<std::size_t>(image.samples_per_row));
   // Rows as bands (paper figure 3) so the image has the screen's shape.
   image.row_height_px = std::max(1, 1080 / std::max(1, rows));
+  // The sound image is the recording row by row, and the field is that image as heights: both
+  // are the visitor's voice, so they are made (and released, zeroed) in memory a core dump
+  // leaves out. They are constructed in place, never assigned (height_field.h).
+  std::pmr::memory_resource* memory = platform::NoDumpMemory();
   RecordingOutcome outcome = RecordingOutcome::kOk;
   try {
     surface::HeightField field = surface::SoundToHeightField(
-        clip, image, kVoiceReliefMm, surface::DisplayGeometry{}.pixel_pitch_mm());
-    voice_image_ = surface::SoundToImage(clip.samples, image);
+        samples, image, kVoiceReliefMm, surface::DisplayGeometry{}.pixel_pitch_mm(), memory);
+    voice_image_.reset();
+    voice_image_.emplace(surface::SoundToImage(samples, image, memory));
     voice_.Store(kVoiceSlot, "voice", std::move(field));
   } catch (const std::invalid_argument&) {
     outcome = RecordingOutcome::kSilent;  // nothing to feel: ask again
   }
-  std::fill(clip.samples.begin(), clip.samples.end(), 0.0f);
   return outcome;
 }
 
 void KioskEngine::WipeVoice() {
+  // The image's and the field's memory is zeroed when the last holder lets it go (NoDumpMemory):
+  // the image here, the field once no scene slot holds it any more (the idle reset's release).
   voice_.Clear(kVoiceSlot);
-  if (voice_image_) std::fill(voice_image_->luminance.begin(), voice_image_->luminance.end(), 0.5f);
   voice_image_.reset();
   if (recorder_) recorder_->Wipe();
 }

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -163,8 +164,10 @@ class KioskEngine final : public platform::AudioRenderer {
   // The per-stroke correction last handed to the scene under the pen (dB).
   StrokeCorrection stroke_correction() const { return stroke_correction_; }
   const StrokeGainMap& stroke_gains() const { return stroke_gains_; }
-  // Holds a voice take in RAM for a check (headless run, tests): the same path as a recording.
-  RecordingOutcome AcceptRecording(std::int64_t now_ns, std::vector<float> samples);
+  // Turns a voice take into the voice surface (headless run, tests: the same path as a
+  // recording). The samples are read in place; the sound image and the height field made from
+  // them live in memory kept out of core dumps (platform::NoDumpMemory()).
+  RecordingOutcome AcceptRecording(std::int64_t now_ns, std::span<const float> samples);
 
   // ---- audio thread
   void Render(float* interleaved, int frames, int channels) noexcept override;

@@ -67,7 +67,7 @@ std::optional<PopEvent> BubbleWrapState::Press(double x_px, double y_px, double 
   // Flatten: every sample within the flatten radius drops to the lowest level found there (the
   // film between bubbles), the rim included.
   const HeightField& old = *current_;
-  std::vector<float> heights = old.heights_m();
+  std::pmr::vector<float> heights = old.heights_m();
   const int x0 = std::max(0, static_cast<int>(std::floor(cx - flatten_radius_px_)));
   const int x1 = std::min(old.width() - 1, static_cast<int>(std::ceil(cx + flatten_radius_px_)));
   const int y0 = std::max(0, static_cast<int>(std::floor(cy - flatten_radius_px_)));

@@ -6,8 +6,12 @@
 
 namespace sas::surface {
 
-HeightField::HeightField(int width, int height, double pitch_m, std::vector<float> heights_m)
-    : width_(width), height_(height), pitch_m_(pitch_m), heights_(std::move(heights_m)) {
+HeightField::HeightField(int width, int height, double pitch_m, std::pmr::vector<float> heights_m)
+    : width_(width),
+      height_(height),
+      pitch_m_(pitch_m),
+      heights_(std::move(heights_m)),
+      summed_area_(heights_.get_allocator().resource()) {
   if (width <= 0 || height <= 0 ||
       heights_.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
     throw std::invalid_argument("HeightField: size does not match width * height");

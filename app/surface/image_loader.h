@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory_resource>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,7 +27,9 @@ class LoadError : public std::runtime_error {
 struct GrayImage {
   int width = 0;
   int height = 0;
-  std::vector<float> luminance;  // row-major, width * height values in [0, 1]
+  // Row-major, width * height values in [0, 1]. Allocator-aware (std::pmr) so that a sound image
+  // of the visitor's voice can be made in memory kept out of core dumps (sound_image.h).
+  std::pmr::vector<float> luminance;
 
   float at(int x, int y) const {
     return luminance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +

@@ -16,7 +16,8 @@ double DisplayGeometry::pixel_pitch_mm() const {
   return diagonal_in * 25.4 / diagonal_px;
 }
 
-ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& options) {
+ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& options,
+                              std::pmr::memory_resource* memory) {
   if (image.width <= 0 || image.height <= 0 ||
       image.luminance.size() !=
           static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height)) {
@@ -29,16 +30,19 @@ ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& optio
   }
   const std::size_t count = image.luminance.size();
   const double relief_m = options.relief_mm * 1e-3;
-  ImageSurface out;
-  std::vector<float> heights(count);
+  // The field is constructed in the returned value, never assigned into it: an assignment would
+  // copy its buffers into the default memory resource (height_field.h).
+  std::pmr::vector<float> heights(count, memory);
   if (options.source == ReliefSource::kLuminance) {
     for (std::size_t i = 0; i < count; ++i) {
       heights[i] = static_cast<float>(relief_m * std::clamp(image.luminance[i], 0.0f, 1.0f));
     }
-    out.field =
-        HeightField(image.width, image.height, options.pixel_pitch_mm * 1e-3, std::move(heights));
-    return out;
+    return ImageSurface{
+        HeightField(image.width, image.height, options.pixel_pitch_mm * 1e-3, std::move(heights)),
+        {},
+        {}};
   }
+  std::vector<float> gradient_magnitude, gradient_direction_rad;
 
   const cv::Mat lum(image.height, image.width, CV_32F, const_cast<float*>(image.luminance.data()));
   cv::Mat smooth;
@@ -55,11 +59,11 @@ ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& optio
   // The magnitude is computed straight into the height buffer, then mapped in place.
   cv::Mat magnitude(image.height, image.width, CV_32F, heights.data());
   if (options.keep_gradient) {
-    out.gradient_direction_rad.resize(count);
-    cv::Mat direction(image.height, image.width, CV_32F, out.gradient_direction_rad.data());
+    gradient_direction_rad.resize(count);
+    cv::Mat direction(image.height, image.width, CV_32F, gradient_direction_rad.data());
     // One vectorised pass; the direction is good to ~0.3°, plenty for overlays and tests.
     cv::cartToPolar(gx, gy, magnitude, direction, false);
-    out.gradient_magnitude = heights;
+    gradient_magnitude.assign(heights.begin(), heights.end());
   } else {
     cv::magnitude(gx, gy, magnitude);
   }
@@ -90,9 +94,9 @@ ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& optio
     const double t = (static_cast<double>(heights[i]) - floor) * gain;
     heights[i] = static_cast<float>(relief_m * std::clamp(t, 0.0, 1.0));
   }
-  out.field =
-      HeightField(image.width, image.height, options.pixel_pitch_mm * 1e-3, std::move(heights));
-  return out;
+  return ImageSurface{
+      HeightField(image.width, image.height, options.pixel_pitch_mm * 1e-3, std::move(heights)),
+      std::move(gradient_magnitude), std::move(gradient_direction_rad)};
 }
 
 HeightField HeightFieldFromImageFile(const std::string& path, const ReliefOptions& options,
@@ -106,7 +110,7 @@ HeightField LoadHeightMapPng(const std::string& path, double full_scale_mm, doub
     throw std::invalid_argument("LoadHeightMapPng: scale and pitch must be positive");
   }
   GrayImage image = LoadGrayImage(path, limits);
-  std::vector<float> heights(image.luminance.size());
+  std::pmr::vector<float> heights(image.luminance.size());
   const double scale_m = full_scale_mm * 1e-3;
   for (std::size_t i = 0; i < heights.size(); ++i) {
     heights[i] = static_cast<float>(image.luminance[i] * scale_m);
@@ -120,7 +124,7 @@ HeightField RowProfile(const HeightField& field, int row) {
   }
   const auto begin = field.heights_m().begin() + static_cast<std::ptrdiff_t>(row) * field.width();
   return HeightField(field.width(), 1, field.pitch_m(),
-                     std::vector<float>(begin, begin + field.width()));
+                     std::pmr::vector<float>(begin, begin + field.width()));
 }
 
 }  // namespace sas::surface

@@ -16,6 +16,7 @@
 // Pixels map to millimetres through the display's physical size (DisplayGeometry), so a stroke of
 // 10 mm on the glass crosses 10 mm of surface.
 
+#include <memory_resource>
 #include <vector>
 
 #include "surface/height_field.h"
@@ -53,8 +54,10 @@ struct ImageSurface {
   std::vector<float> gradient_direction_rad;  // direction of increasing luminance, [0, 2π)
 };
 
-// Throws std::invalid_argument for an empty image or options out of range.
-ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& options = {});
+// Throws std::invalid_argument for an empty image or options out of range. The field's buffers
+// come from `memory` (the gradients from the default resource).
+ImageSurface SurfaceFromImage(const GrayImage& image, const ReliefOptions& options = {},
+                              std::pmr::memory_resource* memory = std::pmr::get_default_resource());
 
 // Convenience: load `path` (image_loader.h) and derive its height field.
 HeightField HeightFieldFromImageFile(const std::string& path, const ReliefOptions& options = {},

@@ -13,14 +13,14 @@
 namespace sas::surface {
 namespace {
 
-float PeakOf(const std::vector<float>& samples, std::size_t count) {
+float PeakOf(std::span<const float> samples, std::size_t count) {
   float peak = 0.0f;
   for (std::size_t i = 0; i < count; ++i) peak = std::max(peak, std::fabs(samples[i]));
   return peak;
 }
 
 // Value of the recording's chunk `chunk` at pixel x (see temporal expansion in the header).
-float PixelValue(const std::vector<float>& s, std::size_t count, std::size_t chunk, int x,
+float PixelValue(std::span<const float> s, std::size_t count, std::size_t chunk, int x,
                  const SoundImageOptions& o) {
   const double per_px = static_cast<double>(o.samples_per_row) / o.row_length_px;
   const double start = static_cast<double>(chunk) * o.samples_per_row;
@@ -64,7 +64,8 @@ bool ParseDouble(std::string_view text, double& value) {
 
 }  // namespace
 
-GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOptions& o) {
+GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& o,
+                       std::pmr::memory_resource* memory) {
   if (samples.empty()) throw std::invalid_argument("SoundToImage: empty recording");
   if (o.samples_per_row < 1 || o.row_length_px < 1 || o.row_height_px < 1 ||
       o.row_length_px > 16384 || !(o.max_duration_s > 0.0) || !(o.sample_rate_hz > 0.0)) {
@@ -79,9 +80,8 @@ GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOption
   }
   const float peak = PeakOf(samples, count);
   const double scale = peak > 1e-9f ? 0.5 / peak : 0.0;  // silence: uniform mid-grey
-  GrayImage image;
-  image.width = o.row_length_px;
-  image.height = static_cast<int>(chunks) * o.row_height_px;
+  GrayImage image{o.row_length_px, static_cast<int>(chunks) * o.row_height_px,
+                  std::pmr::vector<float>(memory)};
   image.luminance.assign(
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height), 0.5f);
   const std::size_t first_half = (chunks + 1) / 2;
@@ -109,11 +109,20 @@ HeightField SoundToHeightField(const AudioClip& clip, const SoundImageOptions& o
   }
   SoundImageOptions o = options;
   o.sample_rate_hz = clip.sample_rate_hz;
+  return SoundToHeightField(clip.samples, o, relief_mm, pixel_pitch_mm,
+                            std::pmr::get_default_resource());
+}
+
+HeightField SoundToHeightField(std::span<const float> samples, const SoundImageOptions& options,
+                               double relief_mm, double pixel_pitch_mm,
+                               std::pmr::memory_resource* memory) {
+  if (samples.empty()) throw std::invalid_argument("SoundToHeightField: the recording is empty");
   ReliefOptions relief;
   relief.source = ReliefSource::kLuminance;
   relief.relief_mm = relief_mm;
   relief.pixel_pitch_mm = pixel_pitch_mm;
-  return SurfaceFromImage(SoundToImage(clip.samples, o), relief).field;
+  // Returned by a move out of the temporary: the field keeps `memory` (height_field.h).
+  return SurfaceFromImage(SoundToImage(samples, options, memory), relief, memory).field;
 }
 
 HeightField SoundToProfile(const AudioClip& clip, const SoundProfileOptions& o) {
@@ -161,7 +170,7 @@ HeightField SoundToProfile(const AudioClip& clip, const SoundProfileOptions& o) 
   const auto [lo_it, hi_it] = std::minmax_element(values.begin(), values.end());
   const double lo = o.shape == ProfileShape::kEnvelope ? 0.0 : *lo_it;
   const double range = *hi_it - lo;
-  std::vector<float> heights(points, 0.0f);
+  std::pmr::vector<float> heights(points, 0.0f);
   if (range > 1e-12) {
     for (std::size_t p = 0; p < points; ++p) {
       heights[p] = static_cast<float>((values[p] - lo) / range * o.amplitude_mm * 1e-3);
@@ -222,7 +231,7 @@ HeightField VibrationProfileFromCsv(const std::string& text, const std::string& 
   const double length = positions.back() - positions.front();
   const auto points = static_cast<std::size_t>(std::floor(length / o.csv_pitch_mm + 1e-9)) + 1;
   if (points > o.max_points) CsvFail(name, line_no, "profile too long for the pitch");
-  std::vector<float> out(points);
+  std::pmr::vector<float> out(points);
   std::size_t seg = 0;
   for (std::size_t p = 0; p < points; ++p) {
     const double x = positions.front() + static_cast<double>(p) * o.csv_pitch_mm;

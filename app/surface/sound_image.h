@@ -24,6 +24,8 @@
 // pairs with increasing positions. CSV heights are taken as true millimetres; lines starting with
 // '#' and one non-numeric header line are skipped; errors name file:line.
 
+#include <memory_resource>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -43,8 +45,11 @@ struct SoundImageOptions {
   double sample_rate_hz = 48000.0;
 };
 
-// Throws std::invalid_argument for options out of range or an empty recording.
-GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOptions& options = {});
+// Throws std::invalid_argument for options out of range or an empty recording. The image's
+// luminance comes from `memory`: a sound image is the recording itself, row by row, so the kiosk
+// makes the visitor's in memory kept out of core dumps.
+GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& options = {},
+                       std::pmr::memory_resource* memory = std::pmr::get_default_resource());
 
 // The kiosk's voice path in one call: recording -> sound image -> height field, reading the
 // image's luminance as height (ReliefSource::kLuminance, see image_surface.h) with `relief_mm` for
@@ -52,6 +57,12 @@ GrayImage SoundToImage(const std::vector<float>& samples, const SoundImageOption
 // (a silent recording would be a featureless plateau: the caller should ask the visitor again).
 HeightField SoundToHeightField(const AudioClip& clip, const SoundImageOptions& options,
                                double relief_mm, double pixel_pitch_mm);
+// The same from samples at options.sample_rate_hz, without a copy; every buffer on the way (the
+// sound image, the heights, the summed-area table) comes from `memory`. Throws
+// std::invalid_argument for an empty recording.
+HeightField SoundToHeightField(std::span<const float> samples, const SoundImageOptions& options,
+                               double relief_mm, double pixel_pitch_mm,
+                               std::pmr::memory_resource* memory);
 
 enum class ProfileShape { kEnvelope, kWaveform };
 

@@ -10,7 +10,7 @@ VoiceRecorder::VoiceRecorder(VoiceRecorderConfig config)
     : config_(config),
       capacity_(
           static_cast<std::size_t>(std::lround(config.max_duration_s * config.sample_rate_hz))),
-      buffer_(std::make_unique<float[]>(capacity_)) {}
+      buffer_(capacity_) {}
 
 void VoiceRecorder::Arm() {
   recording_.store(false, std::memory_order_release);
@@ -25,7 +25,7 @@ void VoiceRecorder::Stop() {
 
 void VoiceRecorder::Wipe() {
   recording_.store(false, std::memory_order_release);
-  std::fill(buffer_.get(), buffer_.get() + capacity_, 0.0f);
+  buffer_.Wipe();
   count_.store(0, std::memory_order_release);
   level_.store(0.0f, std::memory_order_relaxed);
 }
@@ -52,7 +52,7 @@ void VoiceRecorder::PushInterleaved(const float* interleaved, int frames, int ch
 VoiceTake VoiceRecorder::Take() const {
   VoiceTake take;
   const std::size_t count = count_.load(std::memory_order_acquire);
-  take.samples.assign(buffer_.get(), buffer_.get() + count);
+  take.samples = std::span<const float>(buffer_.data(), count);
   take.duration_s = static_cast<double>(count) / config_.sample_rate_hz;
   double sum_sq = 0.0;
   for (float x : take.samples) {

@@ -1,6 +1,9 @@
 #pragma once
 // Voice recording for the "record your own texture" station: mono, up to 5 s, into a buffer
-// allocated once at construction. The device callback pushes blocks (lock-free, allocation-free);
+// allocated once at construction in memory kept out of core dumps (common/no_dump_buffer.h: the
+// visitor's voice stays in RAM only, and a crash must not write it into a core file). The take is
+// handed out as a view of that buffer, never copied to ordinary memory. The device callback
+// pushes blocks (lock-free, allocation-free);
 // the control thread arms, stops and takes the result. While recording, a peak level meter
 // (linear 0..1, per block, with a short decay) is published through an atomic for the UI.
 // At the end the take is classified: clipped (any sample at or above clip_level) and silent
@@ -8,8 +11,9 @@
 
 #include <atomic>
 #include <cstdint>
-#include <memory>
-#include <vector>
+#include <span>
+
+#include "platform/common/no_dump_buffer.h"
 
 namespace sas::platform {
 
@@ -22,7 +26,9 @@ struct VoiceRecorderConfig {
 };
 
 struct VoiceTake {
-  std::vector<float> samples;  // mono, sample_rate_hz
+  // Mono, sample_rate_hz: a view of the recorder's buffer, valid until its next Arm or Wipe (or
+  // its end). Copy it only into memory kept out of core dumps (NoDumpMemory()).
+  std::span<const float> samples;
   double duration_s = 0.0;
   float peak = 0.0f;
   double rms_dbfs = -300.0;
@@ -39,7 +45,7 @@ class VoiceRecorder {
   void Arm();   // starts a new take (the previous samples are overwritten)
   void Stop();  // ends the take early (it also ends by itself when the buffer is full)
   bool Recording() const { return recording_.load(std::memory_order_acquire); }
-  // Copies out the take recorded so far (call after Stop or when Recording() went false).
+  // The take recorded so far and its levels (call after Stop or when Recording() went false).
   VoiceTake Take() const;
   // Stops and overwrites the whole buffer with zeros: a visitor's voice leaves no trace in RAM
   // once the kiosk has turned it into a surface or the idle reset wiped it (issue 7).
@@ -57,7 +63,7 @@ class VoiceRecorder {
  private:
   VoiceRecorderConfig config_;
   std::size_t capacity_;
-  std::unique_ptr<float[]> buffer_;
+  NoDumpBuffer<float> buffer_;
   std::atomic<std::size_t> count_{0};
   std::atomic<bool> recording_{false};
   std::atomic<float> level_{0.0f};

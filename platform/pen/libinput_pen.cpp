@@ -1,5 +1,7 @@
 // libinput tablet-tool source (see pen_source.h). libinput's udev backend needs udev to have
-// initialised the devices (fine on the appliance); the kiosk user needs group `input`.
+// initialised the devices (fine on the appliance); the kiosk user needs group `input`. libinput
+// opens every event node of the seat O_RDWR | O_NONBLOCK (OpenRestricted adds O_CLOEXEC) and
+// skips a node it cannot open that way, so read-only access is not enough.
 #include <fcntl.h>
 #include <libinput.h>
 #include <libudev.h>
@@ -49,18 +51,20 @@ class LibinputPenSource final : public PenSource {
       return Fail(error,
                   "cannot assign " + config_.seat + " (no udev, or no access to /dev/input)");
     libinput_dispatch(input_.get());
+    ForgetDevices();
     int devices = 0;
     while (libinput_event* event = libinput_get_event(input_.get())) {
       if (libinput_event_get_type(event) == LIBINPUT_EVENT_DEVICE_ADDED) {
         ++devices;
         libinput_device* device = libinput_event_get_device(event);
-        if (tablet_name_.empty() && IsOurTablet(device))
-          tablet_name_ = libinput_device_get_name(device);
+        DeviceAdded(IsOurTablet(device), libinput_device_get_name(device), nullptr);
       }
       libinput_event_destroy(event);
     }
-    if (tablet_name_.empty()) {
-      return Fail(error, "no pen tablet among " + std::to_string(devices) + " input devices");
+    // With no tablet yet the thread runs all the same: libinput's udev backend delivers
+    // DEVICE_ADDED for a tablet plugged in later, and the kiosk takes it up then.
+    if (!Connected() && error) {
+      *error = "no pen tablet among " + std::to_string(devices) + " input devices";
     }
     stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
     thread_ = std::thread([this] { Run(); });
@@ -78,8 +82,6 @@ class LibinputPenSource final : public PenSource {
     input_.reset();
     udev_.reset();
   }
-
-  std::string DeviceName() const override { return tablet_name_; }
 
  private:
   bool Fail(std::string* error, const std::string& why) {
@@ -116,12 +118,18 @@ class LibinputPenSource final : public PenSource {
     const auto type = libinput_event_get_type(event);
     if (type == LIBINPUT_EVENT_DEVICE_REMOVED) {
       libinput_device* device = libinput_event_get_device(event);
-      if (IsOurTablet(device)) ReportConnected(false, *board_, tablet_name_);
+      if (IsOurTablet(device)) {
+        // No tip-up or proximity-out will come from it: a tablet plugged back must not start
+        // with a stale tip-down (the kiosk lifts the stroke itself on the unplug).
+        tip_down_ = false;
+        in_proximity_ = false;
+      }
+      DeviceRemoved(IsOurTablet(device), board_);
       return;
     }
     if (type == LIBINPUT_EVENT_DEVICE_ADDED) {
       libinput_device* device = libinput_event_get_device(event);
-      if (IsOurTablet(device)) ReportConnected(true, *board_, tablet_name_);
+      DeviceAdded(IsOurTablet(device), libinput_device_get_name(device), board_);
       return;
     }
     if (type != LIBINPUT_EVENT_TABLET_TOOL_AXIS && type != LIBINPUT_EVENT_TABLET_TOOL_TIP &&
@@ -160,7 +168,6 @@ class LibinputPenSource final : public PenSource {
   DeviceStatusBoard* board_;
   std::unique_ptr<udev, UdevDeleter> udev_;
   std::unique_ptr<libinput, LibinputDeleter> input_;
-  std::string tablet_name_;
   int stop_fd_ = -1;
   std::thread thread_;
   bool tip_down_ = false;
@@ -183,8 +190,7 @@ std::unique_ptr<PenSource> OpenPen(const PenConfig& config, DeviceStatusBoard& b
               source->Name());
     return nullptr;
   }
-  board.Set("pen", DeviceState::kOk,
-            "pen tablet '" + source->DeviceName() + "' via " + source->Name(), source->Name());
+  source->ReportStarted(board, error);
   return source;
 }
 

@@ -6,11 +6,14 @@
 
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
+#include "support/smaps.h"
 #include "support/temp_dir.h"
 
 using sas::kiosk::KioskEngine;
 using sas::kiosk::KioskEngineOptions;
 using sas::kiosk::PenInput;
+using sas::test::AllDontDump;
+using sas::test::VmFlagsOf;
 
 namespace {
 
@@ -143,7 +146,17 @@ TEST_CASE("engine: a recording becomes the surface, and the idle reset wipes it 
   REQUIRE(engine.surface().voice);
   REQUIRE(engine.voice_image() != nullptr);
   CHECK(mic.recorder().Take().samples.empty());  // the raw take is gone once it is a surface
-  advance(5.5);                                  // nobody touches it
+  // Every buffer the voice became is in memory a core dump leaves out: the sound image, the
+  // heights under the pen and the summed-area table (which gives the heights back).
+  const auto& luminance = engine.voice_image()->luminance;
+  CHECK(AllDontDump(VmFlagsOf(luminance.data(), luminance.size() * sizeof(float))));
+  const auto field = engine.current_field();
+  const auto view = field->View();
+  CHECK(AllDontDump(VmFlagsOf(view.height_m, view.size() * sizeof(float))));
+  const auto table_size = static_cast<std::size_t>(view.width + 1) *
+                          static_cast<std::size_t>(view.height + 1) * sizeof(double);
+  CHECK(AllDontDump(VmFlagsOf(view.summed_area, table_size)));
+  advance(5.5);  // nobody touches it
   CHECK_FALSE(engine.has_voice());
   CHECK(engine.voice_image() == nullptr);
   CHECK_FALSE(engine.surface().voice);

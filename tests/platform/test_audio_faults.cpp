@@ -1,6 +1,7 @@
 // Audio output supervision through the fake device: lost mid-stroke, silent meanwhile, reopened
 // with back-off when it returns; one log line per state change; the offline renderer runs the
 // same callback core.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -8,6 +9,7 @@
 #include "platform/audio/audio_output.h"
 #include "platform/audio/fake_audio_backend.h"
 #include "platform/common/clock.h"
+#include "support/smaps.h"
 
 using namespace sas::platform;
 
@@ -230,4 +232,32 @@ TEST_CASE("voice recorder fills its buffer, meters level and flags clipping and 
   CHECK(take.clipped_samples == 2);
   CHECK_FALSE(take.silent);
   CHECK(take.peak == 1.0f);
+}
+
+TEST_CASE(
+    "voice recorder keeps the take in memory a core dump leaves out, hands it out without a copy "
+    "and Wipe zeroes it",
+    "[platform]") {
+  VoiceRecorderConfig config;
+  config.sample_rate_hz = 8000;
+  config.max_duration_s = 1.0;
+  FakeAudioInput input(config, 100);
+  REQUIRE(input.Start());
+  auto& rec = input.recorder();
+  std::vector<float> voice(4000);
+  for (std::size_t i = 0; i < voice.size(); ++i)
+    voice[i] = 0.4f * std::sin(0.07f * static_cast<float>(i));
+  rec.Arm();
+  input.Feed(voice.data(), voice.size());
+  rec.Stop();
+  const auto take = rec.Take();
+  REQUIRE(take.samples.size() == voice.size());
+  CHECK(std::equal(take.samples.begin(), take.samples.end(), voice.begin()));
+  // The whole capture buffer, not only the take, is in "dd" pages.
+  CHECK(sas::test::AllDontDump(
+      sas::test::VmFlagsOf(take.samples.data(), rec.Capacity() * sizeof(float))));
+  const float* buffer = take.samples.data();
+  rec.Wipe();
+  CHECK(rec.Take().samples.empty());
+  CHECK(std::all_of(buffer, buffer + rec.Capacity(), [](float x) { return x == 0.0f; }));
 }

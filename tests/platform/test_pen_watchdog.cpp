@@ -1,5 +1,6 @@
-// Pen source (fake tablet present/absent, the libinput source on this machine) and the systemd
-// watchdog, checked on a datagram socket the test owns (NOTIFY_SOCKET).
+// Pen source (fake tablet present/absent, plugged in later, unplugged and back; the libinput
+// source on this machine) and the systemd watchdog, checked on a datagram socket the test owns
+// (NOTIFY_SOCKET).
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <unistd.h>
@@ -62,10 +63,91 @@ TEST_CASE("the libinput pen source reports this machine's tablet or its absence 
   DeviceStatusBoard board(logger);
   auto pen = OpenPen(PenConfig{}, board);
   const auto status = board.Get("pen");
-  // CI has no tablet (and often no udev); a workstation may have one. Either way: one line.
-  CHECK((status.state == DeviceState::kOk) == (pen != nullptr));
+  // CI has no tablet (and often no udev); a workstation may have one. Either way: one line, and
+  // a source is returned whenever libinput runs (it then waits for a tablet).
+  CHECK((status.state == DeviceState::kOk) == (pen != nullptr && pen->Connected()));
   CHECK(status.backend == "libinput");
   CHECK(logger.Count() == 1);
+}
+
+TEST_CASE("pen: a tablet absent at start is taken up when plugged in later, with one info line",
+          "[platform]") {
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  auto fake = std::make_unique<FakePenSource>(false, /*waits_for_tablet=*/true);
+  FakePenSource* raw = fake.get();
+  auto pen = OpenPen(PenConfig{}, board, std::move(fake));
+  REQUIRE(pen != nullptr);  // running, waiting for a tablet
+  CHECK_FALSE(pen->Connected());
+  auto status = board.Get("pen");
+  CHECK(status.state == DeviceState::kMissing);
+  CHECK(status.message.find("mouse/touch fallback") != std::string::npos);
+  CHECK(status.message.find("until one is plugged in") != std::string::npos);
+  REQUIRE(logger.Count() == 1);
+  CHECK(logger.Recent().back().level == LogLevel::kWarn);
+
+  raw->AddDevice(false, "AT Translated Set 2 keyboard", board);  // not a tablet: nothing
+  CHECK_FALSE(pen->Connected());
+  CHECK(logger.Count() == 1);
+
+  raw->Replug(board);
+  CHECK(pen->Connected());
+  status = board.Get("pen");
+  CHECK(status.state == DeviceState::kOk);
+  CHECK(status.reconnects == 0);  // a first arrival, not a reconnection
+  REQUIRE(logger.Count() == 2);
+  CHECK(logger.Recent().back().Text() == "info pen: ok: pen tablet 'fake tablet' plugged in");
+  CHECK(pen->DeviceName() == "fake tablet");
+  PenEvent e;
+  e.time_ns = 42;
+  REQUIRE(raw->Push(e));
+  REQUIRE(pen->Pop(e));
+  CHECK(e.time_ns == 42);
+}
+
+TEST_CASE(
+    "pen: unplugged and plugged back the status goes ok, lost, ok with one warning and one info "
+    "line, however many of the tablet's nodes come and go",
+    "[platform]") {
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  auto fake = std::make_unique<FakePenSource>(true);
+  FakePenSource* raw = fake.get();
+  auto pen = OpenPen(PenConfig{}, board, std::move(fake));
+  REQUIRE(pen != nullptr);
+  REQUIRE(board.Get("pen").state == DeviceState::kOk);
+  CHECK(logger.Recent().back().Text() == "info pen: ok: pen tablet 'fake tablet' via fake");
+  const auto lines_before = logger.Count();
+
+  raw->AddDevice(true, "fake tablet Pad", board);  // a second node of the same tablet
+  raw->AddDevice(false, "USB mouse", board);
+  raw->RemoveDevice(false, board);
+  raw->RemoveDevice(true, board);  // one node gone, the other still there
+  CHECK(pen->Connected());
+  CHECK(logger.Count() == lines_before);
+
+  raw->Unplug(board);  // the last node
+  CHECK_FALSE(pen->Connected());
+  auto status = board.Get("pen");
+  CHECK(status.state == DeviceState::kLost);
+  CHECK(status.failures == 1);
+  REQUIRE(logger.Count() == lines_before + 1);
+  const auto lost = logger.Recent().back();
+  CHECK(lost.level == LogLevel::kWarn);  // journal priority 4: `journalctl -p warning` shows it
+  CHECK(lost.Text() == "warn pen: lost: pen tablet 'fake tablet' unplugged; mouse/touch fallback");
+  raw->Unplug(board);  // a stray second removal
+  CHECK(logger.Count() == lines_before + 1);
+
+  raw->Replug(board);
+  raw->AddDevice(true, "fake tablet Pad", board);
+  CHECK(pen->Connected());
+  status = board.Get("pen");
+  CHECK(status.state == DeviceState::kOk);
+  CHECK(status.reconnects == 1);
+  REQUIRE(logger.Count() == lines_before + 2);
+  CHECK(logger.Recent().back().Text() == "info pen: ok: pen tablet 'fake tablet' back");
 }
 
 namespace {

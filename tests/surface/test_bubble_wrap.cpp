@@ -94,7 +94,7 @@ TEST_CASE("a bubble pops only at the force threshold, once, stays flat, and Rese
 }
 
 TEST_CASE("bubble wrap state refuses a non-positive threshold or an empty field", "[surface]") {
-  const HeightField field(8, 8, 1e-4, std::vector<float>(64, 0.0f));
+  const HeightField field(8, 8, 1e-4, std::pmr::vector<float>(64, 0.0f));
   CHECK_THROWS_AS(BubbleWrapState(BubbleLayout{}, 0.0, field), std::invalid_argument);
   CHECK_THROWS_AS(BubbleWrapState(BubbleLayout{}, 1.0, HeightField{}), std::invalid_argument);
 }

@@ -1,5 +1,6 @@
 // The summed-area table must give the same box means as summing the pixels directly.
 #include <catch2/catch.hpp>
+#include <memory_resource>
 #include <random>
 
 #include "surface/height_field.h"
@@ -9,7 +10,7 @@ TEST_CASE("box means from the summed-area table equal brute-force sums over rand
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> height(-1e-3f, 1e-3f);
   const int width = 37, rows = 11;
-  std::vector<float> heights(static_cast<std::size_t>(width * rows));
+  std::pmr::vector<float> heights(static_cast<std::size_t>(width * rows));
   for (auto& h : heights) h = height(rng);
   const sas::surface::HeightField field(width, rows, 1e-4, heights);
   std::uniform_int_distribution<int> px(0, width - 1), py(0, rows - 1);
@@ -31,6 +32,6 @@ TEST_CASE("box means from the summed-area table equal brute-force sums over rand
 }
 
 TEST_CASE("a height field whose size does not match its data is refused", "[surface]") {
-  CHECK_THROWS_AS(sas::surface::HeightField(4, 4, 1e-4, std::vector<float>(15)),
+  CHECK_THROWS_AS(sas::surface::HeightField(4, 4, 1e-4, std::pmr::vector<float>(15)),
                   std::invalid_argument);
 }

@@ -12,7 +12,7 @@ using namespace sas::surface;
 
 namespace {
 HeightField Ramp(int w, int h, double top_m) {
-  std::vector<float> v(static_cast<std::size_t>(w * h));
+  std::pmr::vector<float> v(static_cast<std::size_t>(w * h));
   for (std::size_t i = 0; i < v.size(); ++i)
     v[i] = static_cast<float>(top_m * static_cast<double>(i) / static_cast<double>(v.size() - 1));
   return HeightField(w, h, 0.1e-3, std::move(v));

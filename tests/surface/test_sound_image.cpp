@@ -27,7 +27,7 @@ std::vector<float> RowOfSoundImage(const GrayImage& image, int row) {
   options.source = ReliefSource::kLuminance;
   options.relief_mm = 1.0;
   const auto profile = RowProfile(SurfaceFromImage(image, options).field, row);
-  return profile.heights_m();
+  return {profile.heights_m().begin(), profile.heights_m().end()};
 }
 
 // Positions of upward crossings of the profile's mean, linearly interpolated.

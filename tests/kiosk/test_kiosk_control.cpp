@@ -1,0 +1,182 @@
+// The kiosk's control loop body (KioskControl) with the real engine and fake devices: what a
+// SIGHUP does to the usage counters, a tablet plugged in after start; and the process's signal
+// set-up (kiosk_signals.h).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cerrno>
+#include <csignal>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "kiosk/counters_file.h"
+#include "kiosk/kiosk_control.h"
+#include "kiosk/kiosk_engine.h"
+#include "kiosk/kiosk_signals.h"
+#include "platform/audio/audio_output.h"
+#include "platform/pen/pen_source.h"
+#include "support/temp_dir.h"
+
+using namespace sas;
+
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+const std::vector<std::string> kCounterKeys = {"bubble_wrap", "broken_glass", "wooden_board",
+                                               "cracked_ground"};
+
+kiosk::UsageCounters OnDisk(const std::string& path) {
+  kiosk::UsageCounters counters;
+  std::string error;
+  REQUIRE(kiosk::LoadCounters(path, kCounterKeys, &counters, &error));
+  return counters;
+}
+
+void Stroke(kiosk::KioskEngine& engine, std::int64_t t_ns) {
+  for (int i = 0; i < 3; ++i) {
+    kiosk::PenInput pen;
+    pen.time_ns = t_ns + i * 3 * kMs;
+    pen.x_px = 500.0 + 20.0 * i;
+    pen.y_px = 500.0;
+    pen.tip_down = i < 2;
+    pen.pressure = pen.tip_down ? 0.8 : 0.0;
+    pen.has_tilt = true;
+    engine.OnPen(pen);
+  }
+}
+
+}  // namespace
+
+TEST_CASE(
+    "control: SIGHUP saves the usage counters at once instead of at the next periodic save, "
+    "says so in one info line and the loop goes on",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = "/nonexistent";
+  options.counters_path = dir.file("counters.toml");
+  kiosk::KioskEngine engine(options);
+  platform::AudioOutputConfig output_config;
+  platform::OfflineAudioOutput output(engine, output_config);
+  REQUIRE(output.Start());
+  platform::SwitchInputs switches;  // keys only
+  platform::Logger log;
+  log.SetEchoToStderr(false);
+  kiosk::KioskControl control(engine, {&output, nullptr, &switches}, log);
+  const auto on_pen = [](const platform::PenEvent&) {};
+
+  std::int64_t now = 1000 * kMs;
+  Stroke(engine, now);
+  control.Step(now, on_pen);  // the first change is saved at once
+  const auto first = OnDisk(options.counters_path);
+  REQUIRE(first == engine.session().counters());
+
+  now += 1000 * kMs;
+  Stroke(engine, now);
+  control.Step(now, on_pen);  // within the 10 s interval: in memory only
+  REQUIRE(engine.session().counters() != first);
+  REQUIRE(OnDisk(options.counters_path) == first);
+
+  const auto lines_before = log.Count();
+  CHECK(control.Hangup());
+  CHECK(OnDisk(options.counters_path) == engine.session().counters());
+  REQUIRE(log.Count() == lines_before + 1);
+  const auto line = log.Recent().back();
+  CHECK(line.level == platform::LogLevel::kInfo);
+  CHECK(line.Text() ==
+        "info kiosk: SIGHUP: usage counters saved; the configuration is read at start (restart "
+        "the unit to apply changes)");
+
+  // The loop carries on counting after it.
+  now += 1000 * kMs;
+  Stroke(engine, now);
+  control.Step(now, on_pen);
+  CHECK(engine.session().counters() != OnDisk(options.counters_path));
+  CHECK(control.Shutdown());  // and the stop saves the rest
+  CHECK(OnDisk(options.counters_path) == engine.session().counters());
+}
+
+TEST_CASE(
+    "signals: SIGHUP and SIGTERM only raise flags for the loop, and a write into a closed pipe "
+    "fails with EPIPE instead of ending the process",
+    "[kiosk]") {
+  struct sigaction saved[5]{};
+  const int signals[5] = {SIGHUP, SIGPIPE, SIGXFSZ, SIGTERM, SIGINT};
+  for (int i = 0; i < 5; ++i) sigaction(signals[i], nullptr, &saved[i]);
+  kiosk::CatchHangupAndIgnoreWriteSignals();
+  kiosk::CatchStopSignals();
+
+  CHECK_FALSE(kiosk::TakeHangupRequest());
+  raise(SIGHUP);
+  raise(SIGHUP);
+  CHECK(kiosk::TakeHangupRequest());  // two before the loop came round: one save
+  CHECK_FALSE(kiosk::TakeHangupRequest());
+  CHECK_FALSE(kiosk::StopRequested());
+  raise(SIGTERM);
+  CHECK(kiosk::StopRequested());
+
+  // From a thread of its own (some audio libraries block SIGPIPE in the thread that set them up,
+  // a device thread does not): without the ignore, this write would end the process.
+  int fds[2];
+  REQUIRE(pipe2(fds, O_CLOEXEC) == 0);
+  close(fds[0]);
+  ssize_t written = 0;
+  int error = 0;
+  std::thread writer([&] {
+    sigset_t none;
+    sigemptyset(&none);
+    pthread_sigmask(SIG_SETMASK, &none, nullptr);
+    written = write(fds[1], "x", 1);
+    error = errno;
+  });
+  writer.join();
+  close(fds[1]);
+  CHECK(written == -1);
+  CHECK(error == EPIPE);
+
+  for (int i = 0; i < 5; ++i) sigaction(signals[i], &saved[i], nullptr);
+}
+
+TEST_CASE(
+    "control: with no tablet at start mouse/touch drive the kiosk, and a tablet plugged in later "
+    "takes over with its events reaching the loop",
+    "[kiosk]") {
+  kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = "/nonexistent";
+  kiosk::KioskEngine engine(options);
+  platform::AudioOutputConfig output_config;
+  platform::OfflineAudioOutput output(engine, output_config);
+  REQUIRE(output.Start());
+  platform::SwitchInputs switches;
+  platform::Logger log;
+  log.SetEchoToStderr(false);
+  platform::DeviceStatusBoard board(log);
+  auto pen = platform::OpenPen(
+      {}, board, std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
+  REQUIRE(pen != nullptr);
+  auto* fake = static_cast<platform::FakePenSource*>(pen.get());
+  kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
+  std::vector<platform::PenEvent> seen;
+  const auto on_pen = [&](const platform::PenEvent& e) { seen.push_back(e); };
+
+  control.Step(1000 * kMs, on_pen);
+  CHECK(control.PointerActive());
+  CHECK(board.Get("pen").state == platform::DeviceState::kMissing);
+
+  fake->Replug(board);
+  platform::PenEvent e;
+  e.time_ns = 1001 * kMs;
+  e.kind = platform::PenEventKind::kTipDown;
+  e.tip_down = e.in_proximity = true;
+  e.pressure = 0.5f;
+  REQUIRE(fake->Push(e));
+  control.Step(1002 * kMs, on_pen);
+  CHECK_FALSE(control.PointerActive());
+  CHECK(board.Get("pen").state == platform::DeviceState::kOk);
+  REQUIRE(seen.size() == 1);
+  CHECK(seen[0].time_ns == 1001 * kMs);
+}
