@@ -339,8 +339,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     });
   }
   watchdog.Ready("exploring");
-  std::fprintf(out, "kiosk ready %dx%d %s, audio %s, pen %s, switches %s\n", width, height,
-               window.driver().c_str(), output->Running() ? "running" : "silent",
+  std::fprintf(out, "kiosk ready %dx%d %s (%s), audio %s, pen %s, switches %s\n", width, height,
+               window.driver().c_str(), window.renderer_name().c_str(),
+               output->Running() ? "running" : "silent",
                pen ? (pen->Connected() ? "libinput" : "mouse/touch (libinput waiting for a tablet)")
                    : "mouse/touch",
                switches.ActiveBackend());

@@ -381,6 +381,12 @@ void KioskWindow::Open() {
   }
   m.window_id = SDL_GetWindowID(m.window);
   const Uint32 vsync = m.options.vsync ? static_cast<Uint32>(SDL_RENDERER_PRESENTVSYNC) : 0U;
+  // On the bare display (KMSDRM: EGL on GBM) SDL's first choice, desktop OpenGL, gets a context
+  // with Mesa but shows a black screen; OpenGL ES 2 is EGL's own API there and draws. A
+  // SDL_RENDER_DRIVER set in the environment still wins (a normal-priority hint yields to it).
+  const char* video_driver = SDL_GetCurrentVideoDriver();
+  if (video_driver != nullptr && std::string(video_driver) == "KMSDRM")
+    SDL_SetHint(SDL_HINT_RENDER_DRIVER, "opengles2");
   m.renderer = SDL_CreateRenderer(m.window, -1, SDL_RENDERER_ACCELERATED | vsync);
   if (m.renderer == nullptr) m.renderer = SDL_CreateRenderer(m.window, -1, SDL_RENDERER_SOFTWARE);
   if (m.renderer == nullptr) {
