@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "kiosk/counters_file.h"
+#include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/log/log.h"
 #include "support/temp_dir.h"
@@ -196,4 +197,73 @@ TEST_CASE("fault matrix: counters file - no damage lowers a count; the damaged f
     }
   }
   CHECK(rows == 16);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Surface: the configuration file (--config, /etc/sketch-a-scratch/kiosk.toml). Promise: a bad
+// file is refused with a message naming the file (and line and key where there is one), the
+// kiosk starts on the last good copy, and that copy is never replaced by the bad file.
+
+namespace {
+
+struct ConfigRow {
+  const char* name;
+  std::function<std::string(const sas::test::TempDir&)> make;  // returns the --config path
+  const char* message;                                          // expected in the problem
+};
+
+std::vector<ConfigRow> ConfigRows() {
+  const auto text = [](std::string contents) {
+    return [contents](const sas::test::TempDir& dir) { return dir.Write("kiosk.toml", contents); };
+  };
+  return {
+      {"a directory given as the file",
+       [](const sas::test::TempDir& dir) {
+         fs::create_directory(dir.file("conf.d"));
+         return dir.file("conf.d");
+       },
+       "is a directory"},
+      {"a missing file", [](const sas::test::TempDir& dir) { return dir.file("none.toml"); },
+       "cannot open"},
+      {"an unknown default_texture", text("[session]\ndefault_texture = \"wodden_board\"\n"),
+       "default_texture"},
+      {"a syntax error", text("[audio\nsample_rate_hz = 48000\n"), "syntax error"},
+      {"an unknown table", text("[colours]\nred = 1\n"), "unknown key"},
+      {"an unknown key", text("[audio]\nsample_rat_hz = 48000\n"), "unknown key"},
+      {"a top-level key", text("sample_rate_hz = 48000\n"), "top-level"},
+      {"a string for a number", text("[audio]\nsample_rate_hz = \"fast\"\n"), "integer"},
+      {"an integer out of range", text("[audio]\nbuffer_frames = 1\n"), "out of range"},
+      {"a real out of range", text("[gains]\nsound_gain_db = 90.0\n"), "out of range"},
+      {"nan", text("[gains]\nsound_gain_db = nan\n"), "finite"},
+      {"inf", text("[gains]\nhaptic_gain_db = inf\n"), "finite"},
+      {"an unknown switches backend", text("[switches]\nbackend = \"serial\"\n"), "not one of"},
+      {"four GPIO lines instead of five", text("[switches]\ngpio_lines = [\"1\",\"2\",\"3\",\"4\"]\n"),
+       "list of 5"},
+      {"ambient minimum above maximum",
+       text("[gains]\nambient_min_db = 20.0\nambient_max_db = 10.0\n"), "must not exceed"},
+      {"binary junk", text(std::string("\x7f\x45\x4c\x46\x02\x01\x01\x00\xff\xfe", 10)), ""},
+      {"an empty key name", text("[audio]\n\"\" = 1\n"), "unknown key"},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("fault matrix: configuration - a bad file is refused and the last good copy kept",
+          "[kiosk][faults]") {
+  int rows = 0;
+  for (const auto& row : ConfigRows()) {
+    ++rows;
+    INFO("row: configuration, " << row.name);
+    sas::test::TempDir dir;
+    const std::string last_good =
+        dir.Write("last-good.toml", "[session]\ndefault_texture = \"bubble_wrap\"\n");
+    const std::string before = ReadAll(last_good);
+    const std::string path = row.make(dir);
+    const auto result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+    CHECK(result.source == sas::kiosk::ConfigLoadResult::Source::kLastGood);
+    CHECK(result.config.default_texture == "bubble_wrap");
+    CHECK_THAT(result.problem, Catch::Contains(path) && Catch::Contains(row.message));
+    CHECK(ReadAll(last_good) == before);
+  }
+  CHECK(rows == 17);
 }
