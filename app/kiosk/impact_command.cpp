@@ -1,10 +1,13 @@
 // The `impact` calibration command (see impact_command.h).
 #include "kiosk/impact_command.h"
 
+#include <chrono>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include "kiosk/command_line.h"
 #include "kiosk/contact_scheme_names.h"
 #include "synth/contact.h"
 #include "synth/hunt_crossley_closed_form.h"
@@ -12,129 +15,107 @@
 namespace sas::kiosk {
 namespace {
 
-double ParseNumber(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(value)) {
-    throw std::invalid_argument(option + ": '" + text + "' is not a number");
-  }
-  return value;
+// A value the closed form does not define (inf, nan) is written as null: JSON has no inf.
+nlohmann::json Number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-void RequireRange(const std::string& option, double value, double min, double max) {
-  if (value < min || value > max) {
-    std::ostringstream message;
-    message << option << ": " << value << " is out of range [" << min << ", " << max << "]";
-    throw std::invalid_argument(message.str());
-  }
-}
-
-double RelativeError(double measured, double exact) {
+nlohmann::json RelativeError(double measured, double exact) {
+  if (!std::isfinite(measured) || !std::isfinite(exact)) return nullptr;
   return exact == 0.0 ? std::fabs(measured) : std::fabs(measured - exact) / std::fabs(exact);
 }
 
 }  // namespace
 
-ImpactOptions ParseImpactArgs(const std::vector<std::string>& args) {
-  ImpactOptions options;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& option = args[i];
-    if (i + 1 >= args.size()) throw std::invalid_argument(option + ": missing value");
-    const std::string& value = args[++i];
-    if (option == "--mass") {
-      options.mass_kg = ParseNumber(option, value);
-      RequireRange(option, options.mass_kg, 1e-4, 1.0);
-    } else if (option == "--k") {
-      options.k = ParseNumber(option, value);
-      RequireRange(option, options.k, 1.0, 1e12);
-    } else if (option == "--mu") {
-      options.mu = ParseNumber(option, value);
-      RequireRange(option, options.mu, 0.0, 100.0);
-    } else if (option == "--alpha") {
-      options.alpha = ParseNumber(option, value);
-      RequireRange(option, options.alpha, 1.0, 4.0);
-    } else if (option == "--v-in") {
-      options.v_in_mps = ParseNumber(option, value);
-      RequireRange(option, options.v_in_mps, 1e-4, 10.0);
-    } else if (option == "--fs") {
-      options.sample_rate_hz = ParseNumber(option, value);
-      RequireRange(option, options.sample_rate_hz, 8000.0, 384000.0);
-    } else if (option == "--oversample") {
-      const double n = ParseNumber(option, value);
-      RequireRange(option, n, 0.0, 1024.0);
-      if (n != std::floor(n)) throw std::invalid_argument(option + ": must be a whole number");
-      options.oversample = static_cast<int>(n);
-    } else if (option == "--phase") {
-      options.phase = ParseNumber(option, value);
-      RequireRange(option, options.phase, 0.0, 0.999999);
-    } else if (option == "--scheme") {
-      if (!ParseContactScheme(value, &options.scheme)) {
-        throw std::invalid_argument(option + ": unknown scheme '" + value + "' (one of " +
-                                    ContactSchemeChoices() + ")");
-      }
-    } else {
-      throw std::invalid_argument("unknown option " + option);
-    }
-  }
-  return options;
-}
-
 std::string ImpactReportJson(const ImpactOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(options.max_wall_s));
   const auto run = synth::SimulateRigidWallImpact(
       options.mass_kg, options.k, options.mu, options.alpha, options.v_in_mps,
-      options.sample_rate_hz, options.scheme, options.oversample, options.phase);
+      options.sample_rate_hz, options.scheme, options.oversample, options.phase,
+      [&] { return Clock::now() < deadline; });
+  if (run.stopped) {
+    std::ostringstream message;
+    message << "stopped after " << options.max_wall_s << " s of wall time (--max-wall-s) at "
+            << options.sample_rate_hz << " Hz x " << run.oversample
+            << " sub-steps; lower --fs or --oversample, or raise --max-wall-s";
+    throw std::runtime_error(message.str());
+  }
   const auto exact = synth::HuntCrossleyImpact(options.mass_kg, options.k, options.mu,
                                                options.alpha, options.v_in_mps);
   const double exact_samples = exact.contact_time_s * options.sample_rate_hz;
-  std::ostringstream json;
-  json.precision(10);
-  json << "{\n"
-       << "  \"input\": {\"mass_kg\": " << options.mass_kg << ", \"k\": " << options.k
-       << ", \"mu_s_per_m\": " << options.mu << ", \"alpha\": " << options.alpha
-       << ", \"v_in_mps\": " << options.v_in_mps << ", \"fs_hz\": " << options.sample_rate_hz
-       << ", \"scheme\": \"" << ContactSchemeName(options.scheme)
-       << "\", \"oversample\": " << run.oversample << ", \"phase\": " << options.phase << "},\n"
-       << "  \"separated\": " << (run.separated ? "true" : "false") << ",\n"
-       << "  \"measured\": {\"exit_velocity_mps\": " << run.exit_velocity_mps
-       << ", \"restitution\": " << run.exit_velocity_mps / options.v_in_mps
-       << ", \"max_compression_m\": " << run.max_compression_m
-       << ", \"contact_time_s\": " << run.contact_time_s
-       << ", \"samples_per_contact\": " << run.samples_per_contact << "},\n"
-       << "  \"closed_form\": {\"exit_velocity_mps\": " << exact.exit_speed_mps
-       << ", \"restitution\": " << exact.restitution
-       << ", \"max_compression_m\": " << exact.max_compression_m
-       << ", \"contact_time_s\": " << exact.contact_time_s
-       << ", \"samples_per_contact\": " << exact_samples << "},\n"
-       << "  \"relative_error\": {\"exit_velocity\": "
-       << RelativeError(run.exit_velocity_mps, exact.exit_speed_mps)
-       << ", \"max_compression\": " << RelativeError(run.max_compression_m, exact.max_compression_m)
-       << ", \"contact_time\": " << RelativeError(run.contact_time_s, exact.contact_time_s)
-       << "},\n"
-       << "  \"energy_gained\": "
-       << (run.exit_velocity_mps > options.v_in_mps * (1.0 + 1e-12) ? "true" : "false") << "\n"
-       << "}\n";
-  return json.str();
+  nlohmann::ordered_json json;
+  json["input"] = {{"mass_kg", options.mass_kg},
+                   {"k", options.k},
+                   {"mu_s_per_m", options.mu},
+                   {"alpha", options.alpha},
+                   {"v_in_mps", options.v_in_mps},
+                   {"fs_hz", options.sample_rate_hz},
+                   {"scheme", ContactSchemeName(options.scheme)},
+                   {"oversample", run.oversample},
+                   {"phase", options.phase}};
+  json["separated"] = run.separated;
+  json["measured"] = {{"exit_velocity_mps", Number(run.exit_velocity_mps)},
+                      {"restitution", Number(run.exit_velocity_mps / options.v_in_mps)},
+                      {"max_compression_m", Number(run.max_compression_m)},
+                      {"contact_time_s", Number(run.contact_time_s)},
+                      {"samples_per_contact", Number(run.samples_per_contact)}};
+  json["closed_form"] = {{"exit_velocity_mps", Number(exact.exit_speed_mps)},
+                         {"restitution", Number(exact.restitution)},
+                         {"max_compression_m", Number(exact.max_compression_m)},
+                         {"contact_time_s", Number(exact.contact_time_s)},
+                         {"samples_per_contact", Number(exact_samples)}};
+  json["relative_error"] = {
+      {"exit_velocity", RelativeError(run.exit_velocity_mps, exact.exit_speed_mps)},
+      {"max_compression", RelativeError(run.max_compression_m, exact.max_compression_m)},
+      {"contact_time", RelativeError(run.contact_time_s, exact.contact_time_s)}};
+  json["energy_gain_tolerance"] = kEnergyGainTolerance;
+  json["energy_gained"] =
+      run.exit_velocity_mps > options.v_in_mps * (1.0 + kEnergyGainTolerance);
+  // Full precision (nlohmann's default: the shortest text that reads back to the same double).
+  return json.dump(2) + "\n";
 }
 
 int RunImpactCommand(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
   ImpactOptions options;
+  CLI::App app("Simulates one probe impact on a rigid wall through the engine's contact code and "
+               "prints JSON next to the Hunt-Crossley closed form.",
+               "impact");
+  AddNumberOption(app, "--mass", options.mass_kg, 1e-4, 1.0, "probe mass, kg (default 0.01)");
+  AddNumberOption(app, "--k", options.k, 1.0, 1e12, "contact stiffness, N/m^alpha (default 1e8)");
+  AddNumberOption(app, "--mu", options.mu, 0.0, 100.0, "Hunt-Crossley damping, s/m (default 0.5)");
+  AddNumberOption(app, "--alpha", options.alpha, 1.0, 4.0, "contact exponent (default 1.5)");
+  AddNumberOption(app, "--v-in", options.v_in_mps, 1e-4, 10.0, "impact speed, m/s (default 1)");
+  AddNumberOption(app, "--fs", options.sample_rate_hz, 8000.0, 384000.0,
+                  "sample rate, Hz (default 48000)");
+  app.add_option("--oversample", options.oversample,
+                 "sub-steps per sample, 0 = the engine's choice (default 0)")
+      ->check(CLI::Range(0, 1024));
+  AddNumberOption(app, "--phase", options.phase, 0.0, 0.999999,
+                  "sub-sample onset phase (default 0)");
+  std::string scheme = ContactSchemeName(options.scheme);
+  app.add_option("--scheme", scheme, "contact scheme: " + ContactSchemeChoices())
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            synth::ContactScheme parsed{};
+            return ParseContactScheme(text, &parsed)
+                       ? ""
+                       : "unknown scheme '" + text + "' (one of " + ContactSchemeChoices() + ")";
+          },
+          "SCHEME"));
+  AddNumberOption(app, "--max-wall-s", options.max_wall_s, 0.1, 3600.0,
+                  "stop (exit 1) after this much wall time (default 30)");
+  if (const int code = ParseCommandLine(app, args, out, err); code >= 0) return code;
+  ParseContactScheme(scheme, &options.scheme);
   try {
-    options = ParseImpactArgs(args);
+    std::fputs(ImpactReportJson(options).c_str(), out);
   } catch (const std::exception& e) {
-    std::fprintf(err,
-                 "sketch-a-scratch impact: %s\n"
-                 "usage: sketch-a-scratch impact --mass KG --k K --mu S_PER_M --alpha A --v-in "
-                 "M_PER_S [--fs HZ] [--scheme %s] [--oversample N] [--phase 0..1]\n",
-                 e.what(), ContactSchemeChoices().c_str());
-    return 2;
+    std::fprintf(err, "sketch-a-scratch impact: %s\n", e.what());
+    return kExitRuntimeError;
   }
-  std::fputs(ImpactReportJson(options).c_str(), out);
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace sas::kiosk

@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -171,7 +172,11 @@ const std::vector<KeySpec>& Schema() {
       {"gains", "ambient_quiet_dbfs", Real(&KioskConfig::ambient_quiet_dbfs, -120.0, 0.0)},
       {"gains", "ambient_rate_db_per_s", Real(&KioskConfig::ambient_rate_db_per_s, 0.01, 20.0)},
       {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},
-      {"session", "default_texture", Text(&KioskConfig::default_texture)},
+      // One of the four kiosk textures (the engine's folder names): a typo used to be accepted
+      // and the kiosk silently showed its first texture instead.
+      {"session", "default_texture",
+       Choice(&KioskConfig::default_texture,
+              {"bubble_wrap", "broken_glass", "wooden_board", "cracked_ground"})},
       {"staff", "chord", Chord(&KioskConfig::staff_chord)},
       {"staff", "chord_hold_s", Real(&KioskConfig::staff_chord_hold_s, 0.0, 10.0)},
   };
@@ -220,12 +225,31 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
   return config;
 }
 
-KioskConfig LoadKioskConfig(const std::string& path) {
+namespace {
+
+// A directory (or a device, a FIFO) opens and reads as an empty, valid file through ifstream; it
+// would then replace the last good copy with 0 bytes. Only a regular file is a configuration.
+std::string ReadConfigText(const std::string& path) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) {
+    throw ConfigError(path + ": is a directory, not a configuration file");
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw ConfigError(path + ": not a regular file");
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) throw ConfigError(path + ": cannot open configuration file");
   std::ostringstream text;
   text << file.rdbuf();
-  return ParseKioskConfig(text.str(), path);
+  if (file.bad()) throw ConfigError(path + ": cannot read configuration file");
+  return text.str();
+}
+
+}  // namespace
+
+KioskConfig LoadKioskConfig(const std::string& path) {
+  return ParseKioskConfig(ReadConfigText(path), path);
 }
 
 }  // namespace sas::kiosk
@@ -238,11 +262,7 @@ ConfigLoadResult LoadKioskConfigWithFallback(const std::string& path,
   std::string text;
   if (!last_good_path.empty()) RemoveStaleTemporaries(last_good_path);  // a kill mid-copy
   try {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw ConfigError(path + ": cannot open configuration file");
-    std::ostringstream buffer;
-    buffer << file.rdbuf();
-    text = buffer.str();
+    text = ReadConfigText(path);
     result.config = ParseKioskConfig(text, path);
     result.source = ConfigLoadResult::Source::kFile;
   } catch (const ConfigError& error) {

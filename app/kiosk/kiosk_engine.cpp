@@ -163,12 +163,11 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   session_ = Session(session);
   if (!options_.counters_path.empty()) {
     RemoveStaleTemporaries(options_.counters_path);  // left by a kill in the middle of a save
-    std::string error;
     // Read under every texture's name, loaded or not: a texture left out today keeps its count.
-    if (!LoadCounters(options_.counters_path, counter_keys_, &file_counters_, &error)) {
-      platform::DefaultLogger().Warn("counters",
-                                     error + "; counting from zero (file left for staff)");
-    }
+    CountersRecovery recovery = RecoverCounters(options_.counters_path, counter_keys_);
+    file_counters_ = recovery.counters;
+    counters_may_save_ = recovery.may_save;
+    if (!recovery.report.empty()) platform::DefaultLogger().Warn("counters", recovery.report);
     UsageCounters counters = file_counters_;
     counters.strokes_per_texture.assign(textures_.size(), 0);
     for (std::size_t i = 0; i < counter_keys_.size(); ++i) {
@@ -703,6 +702,11 @@ void KioskEngine::SetAmbientGainDb(double gain_db) {
 
 bool KioskEngine::SaveCounters(std::string* error) const {
   if (options_.counters_path.empty()) return true;
+  if (!counters_may_save_) {
+    // Reported once at start: a damaged file that could not be moved aside is never replaced.
+    if (error) *error = options_.counters_path + " is damaged and could not be moved aside";
+    return false;
+  }
   // Session counts for the loaded textures, the file's own for any left out.
   UsageCounters all = session_.counters();
   all.strokes_per_texture = file_counters_.strokes_per_texture;

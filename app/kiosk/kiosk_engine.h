@@ -221,6 +221,7 @@ class KioskEngine final : public platform::AudioRenderer {
   std::vector<int> token_texture_;         // token -> index in textures_, -1 when left out
   std::vector<std::string> texture_failures_;
   UsageCounters file_counters_;  // as read at start (counter_keys_ order)
+  bool counters_may_save_ = true;  // false: a damaged counters file stays untouched
   platform::DeviceStatusBoard* board_ = nullptr;
   GestureMapping mapping_;
   int bubble_texture_ = -1;

@@ -41,7 +41,7 @@ void Session::Activity(double now_s) {
   last_activity_s_ = now_s;
   if (mode_ == SessionMode::kAttract) {
     mode_ = SessionMode::kExploring;
-    ++counters_.sessions;
+    CountOne(counters_.sessions);
     Emit(SessionAction::Kind::kLeaveAttract);
   }
 }
@@ -50,9 +50,9 @@ void Session::OnPen(double now_s, bool tip_down) {
   Activity(now_s);
   if (tip_down && !tip_down_) {
     if (surface_.voice) {
-      ++counters_.voice_strokes;
+      CountOne(counters_.voice_strokes);
     } else {
-      ++counters_.strokes_per_texture[static_cast<std::size_t>(surface_.texture)];
+      CountOne(counters_.strokes_per_texture[static_cast<std::size_t>(surface_.texture)]);
     }
   }
   tip_down_ = tip_down;
@@ -106,7 +106,7 @@ void Session::OnRecordingFinished(double now_s, RecordingOutcome outcome) {
   mode_ = SessionMode::kExploring;
   switch (outcome) {
     case RecordingOutcome::kOk:
-      ++counters_.recordings;
+      CountOne(counters_.recordings);
       has_voice_ = true;
       surface_ = {false, -1};  // force the cross-fade even from a previous voice surface
       Show({true, 0}, false);
@@ -122,7 +122,7 @@ void Session::OnRecordingFinished(double now_s, RecordingOutcome outcome) {
       Speak(Cue::kRecordingUnavailable, surface_.texture);
       break;
   }
-  ++counters_.failed_recordings;
+  CountOne(counters_.failed_recordings);
 }
 
 void Session::OnStaffChord(double now_s) {

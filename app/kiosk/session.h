@@ -73,6 +73,13 @@ struct SessionConfig {
 };
 
 // Anonymous usage counters shown on the staff panel (and persisted by the wiring).
+// Counts stop at the largest TOML integer (2^63 - 1) instead of wrapping to zero, so the file
+// stays valid TOML and a count never goes down.
+inline constexpr std::uint64_t kMaxUsageCount = 0x7fffffffffffffffULL;
+inline void CountOne(std::uint64_t& count) {
+  if (count < kMaxUsageCount) ++count;
+}
+
 struct UsageCounters {
   std::vector<std::uint64_t> strokes_per_texture;  // pen-down strokes on each texture
   std::uint64_t voice_strokes = 0;

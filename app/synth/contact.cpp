@@ -871,7 +871,8 @@ double EquilibriumEnergy(const ImpactModel& impact, double push_n) {
 
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
-                                        int oversample, double onset_phase) {
+                                        int oversample, double onset_phase,
+                                        const std::function<bool()>& keep_going) {
   // A value outside the enumeration runs the default; the result says which scheme ran.
   const ContactScheme used = IsContactSchemeImplemented(scheme) ? scheme : kDefaultContactScheme;
   ImpactParams params;
@@ -942,6 +943,10 @@ ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, dou
   };
   const long max_samples = static_cast<long>(10.0 * sample_rate_hz);
   for (long n = 0; n < max_samples; ++n) {
+    if (keep_going && (n & 4095) == 0 && n > 0 && !keep_going()) {
+      result.stopped = true;
+      break;
+    }
     StepContactSample(config, modes, probe, drive, observe);
     result.oversample = std::max(result.oversample, probe.substeps_used);
     if (result.separated && probe.compression_m < 0.0) break;

@@ -69,6 +69,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include "synth/material_params.h"
 
@@ -302,9 +303,13 @@ struct ImpactRunResult {
   int oversample = 1;                // sub-steps per sample used (the most, if adaptive)
   ContactScheme scheme_used = kDefaultContactScheme;  // see IsContactSchemeImplemented
   bool separated = false;                             // false if the probe had not left after 10 s
+  bool stopped = false;  // keep_going said stop before the run ended (results are partial)
 };
+// `keep_going` (may be empty) is asked every 4096 samples; false ends the run early (the caller's
+// wall-time cap: a run at 384 kHz with 1024 sub-steps can take minutes).
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
-                                        int oversample, double onset_phase);
+                                        int oversample, double onset_phase,
+                                        const std::function<bool()>& keep_going = {});
 
 }  // namespace sas::synth

@@ -67,7 +67,8 @@ TEST_CASE("usage counters survive a save and load round trip", "[kiosk]") {
   CHECK(loaded == Sample());
 }
 
-TEST_CASE("a missing counters file starts from zero and a damaged one is reported", "[kiosk]") {
+TEST_CASE("a missing counters file starts from zero and a damaged one is reported and salvaged",
+          "[kiosk]") {
   sas::test::TempDir dir;
   UsageCounters loaded;
   std::string error;
@@ -76,8 +77,32 @@ TEST_CASE("a missing counters file starts from zero and a damaged one is reporte
   CHECK(loaded.strokes_per_texture.size() == 4);
   const auto damaged = dir.Write("bad.toml", "sessions = 3\nrecordings = lots\n");
   CHECK_FALSE(sas::kiosk::LoadCounters(damaged, kNames, &loaded, &error));
-  CHECK_THAT(error, Catch::Contains("bad.toml:2") && Catch::Contains("recordings"));
-  CHECK(loaded.sessions == 0);
+  CHECK_THAT(error, Catch::Contains("bad.toml:2"));
+  CHECK(loaded.sessions == 3);  // the intact line is kept
+  CHECK(loaded.recordings == 0);
+}
+
+TEST_CASE("counters are salvaged line by line and each fault is named with its line", "[kiosk]") {
+  const auto salvage = sas::kiosk::SalvageCounters(
+      "sessions = 12\nrecordings = lots\ncolour = 3\nvoice_strokes = 18446744073709551616\n"
+      "strokes.bubble_wrap = 9\nstrokes.gone_texture = 4\nfailed_recordings = 7",
+      kNames, "c.toml");
+  CHECK(salvage.counters.sessions == 12);
+  CHECK(salvage.counters.strokes_per_texture.at(0) == 9);
+  CHECK(salvage.counters.voice_strokes == sas::kiosk::kMaxUsageCount);  // clamped, not wrapped
+  CHECK(salvage.counters.failed_recordings == 0);  // last line cut off: not trusted
+  CHECK_FALSE(salvage.found.at(1));                // recordings
+  REQUIRE(salvage.problems.size() == 5);
+  CHECK_THAT(salvage.problems[1], Catch::Contains("c.toml:2") && Catch::Contains("recordings"));
+  CHECK_THAT(salvage.problems[2], Catch::Contains("c.toml:3") && Catch::Contains("unknown key"));
+}
+
+TEST_CASE("a count at the largest value stays there instead of wrapping to zero", "[kiosk]") {
+  std::uint64_t count = sas::kiosk::kMaxUsageCount - 1;
+  sas::kiosk::CountOne(count);
+  CHECK(count == sas::kiosk::kMaxUsageCount);
+  sas::kiosk::CountOne(count);
+  CHECK(count == sas::kiosk::kMaxUsageCount);
 }
 
 TEST_CASE("a full disk while saving leaves the previous counters file intact", "[kiosk]") {
@@ -96,12 +121,13 @@ TEST_CASE("a full disk while saving leaves the previous counters file intact", "
   CHECK_FALSE(saved);
   CHECK_THAT(error, Catch::Contains("counters.toml"));
   CHECK(ReadAll(path) == before);
-  // No temporary file is left behind.
+  // No temporary file is left behind: only the file and its backup.
   int entries = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) {
     ++entries;
   }
-  CHECK(entries == 1);
+  CHECK(entries == 2);
+  CHECK(ReadAll(path + ".backup") == before);
 }
 
 TEST_CASE("atomic write replaces the whole file and reports an unwritable directory", "[kiosk]") {

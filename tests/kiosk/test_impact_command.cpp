@@ -1,7 +1,9 @@
 // The `impact` calibration command: its JSON carries the engine's measurement next to the closed
 // form, and bad arguments are refused with a message naming the option.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "kiosk/impact_command.h"
@@ -65,7 +67,7 @@ TEST_CASE("impact command refuses bad arguments naming the option", "[kiosk]") {
   CHECK_THAT(text, Catch::Contains("discrete_gradient"));
   text = Capture({"--mass"}, &exit_code);
   CHECK(exit_code == 2);
-  CHECK_THAT(text, Catch::Contains("missing value"));
+  CHECK_THAT(text, Catch::Contains("--mass") && Catch::Contains("missing"));
 }
 
 TEST_CASE(
@@ -107,4 +109,54 @@ TEST_CASE(
   for (int a = 0; a < 4; ++a) {
     for (int b = a + 1; b < 4; ++b) CHECK(exits[a] != exits[b]);
   }
+}
+
+TEST_CASE("impact command writes valid JSON with null where the closed form has no value",
+          "[kiosk]") {
+  // Steep contacts (alpha 3-4) at low speed: the closed form's contact-time quadrature gives inf
+  // (printed as a bare `inf` before, which no JSON reader accepts).
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--alpha", "3", "--v-in", "0.0001", "--mass", "0.0001", "--k",
+                                 "1e6", "--mu", "0.5"},
+        std::vector<std::string>{"--alpha", "4", "--v-in", "1", "--mass", "1", "--k", "1",
+                                 "--mu", "0.5", "--fs", "8000"}}) {
+    int exit_code = -1;
+    const std::string text = Capture(args, &exit_code);
+    INFO(text);
+    REQUIRE(exit_code == 0);
+    nlohmann::json json;
+    REQUIRE_NOTHROW(json = nlohmann::json::parse(text));
+    CHECK(json["closed_form"]["contact_time_s"].is_null());
+    CHECK(json["measured"]["exit_velocity_mps"].is_number());
+  }
+}
+
+TEST_CASE("impact command flags energy gain only beyond its stated tolerance", "[kiosk]") {
+  int exit_code = -1;
+  // No damping: the exact restitution is 1 and round-off leaves e a few 1e-9 above it.
+  const std::string text = Capture({"--mu", "0", "--k", "1e12", "--mass", "0.0001", "--v-in", "10",
+                                    "--alpha", "1"},
+                                   &exit_code);
+  REQUIRE(exit_code == 0);
+  const auto json = nlohmann::json::parse(text);
+  CHECK(json["energy_gain_tolerance"].get<double>() == sas::kiosk::kEnergyGainTolerance);
+  CHECK(json["measured"]["restitution"].get<double>() <= 1.0 + sas::kiosk::kEnergyGainTolerance);
+  CHECK(json["energy_gained"] == false);
+}
+
+TEST_CASE("impact command stops at its wall-time cap with exit 1 and answers --help with 0",
+          "[kiosk]") {
+  int exit_code = -1;
+  const auto start = std::chrono::steady_clock::now();
+  auto text = Capture({"--fs", "384000", "--oversample", "1024", "--mu", "0", "--k", "1",
+                       "--max-wall-s", "0.5"},
+                      &exit_code);
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK(exit_code == 1);
+  CHECK_THAT(text, Catch::Contains("--max-wall-s"));
+  CHECK(took_s < 5.0);
+  text = Capture({"--help"}, &exit_code);
+  CHECK(exit_code == 0);
+  CHECK_THAT(text, Catch::Contains("--mass") && Catch::Contains("--max-wall-s"));
 }

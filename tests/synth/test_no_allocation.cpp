@@ -61,30 +61,38 @@ void* operator new(std::size_t size, std::align_val_t align) {
 void* operator new[](std::size_t size, std::align_val_t align) {
   return CountedAlignedAlloc(size, align);
 }
-void operator delete(void* p) noexcept {
+// Every delete form frees through one helper rather than calling operator delete(void*): GCC 12
+// at -O3 (the Release build) inlines that call into e.g. delete[] and then flags it under
+// -Wmismatched-new-delete as freeing new[] memory with plain delete.
+namespace {
+void CountedFree(void* p) noexcept {
   if (g_counting.load(std::memory_order_relaxed) && p != nullptr) g_allocations.fetch_add(1);
   std::free(p);
 }
+}  // namespace
+void operator delete(void* p) noexcept {
+  CountedFree(p);
+}
 void operator delete[](void* p) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete[](void* p, std::size_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete(void* p, std::align_val_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete[](void* p, std::align_val_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  operator delete(p);
+  CountedFree(p);
 }
 
 using namespace sas::synth;
