@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for Sketch-a-Scratch and builds it; idempotent.
 #   install/setup.sh run    install build + runtime packages, build, run the main job
-#   install/setup.sh test   install everything the tests need, build, run the test suite
-#                           (normal build, then the ASan/UBSan build)
+#   install/setup.sh test   install everything the tests need, build, run the test suite,
+#                           boot the installed .deb in a VM (tests/appliance/boot-test.sh),
+#                           build the Release configuration, then the ASan/UBSan build and suite
 #   install/setup.sh build  install build + runtime packages and build only
 # Runs apt-get as root (directly, or through sudo when started as a normal user).
 set -euo pipefail
@@ -72,6 +73,10 @@ case "$mode" in
     ;;
   test)
     (cd "$repo/build" && ctest --output-on-failure -j "$jobs")
+    # The installed product: the .deb booted under systemd in a VM (tests/appliance/boot-test.sh).
+    bash "$repo/tests/appliance/boot-test.sh" --build-dir "$repo/build"
+    # A packager's first command builds the product with CMake's Release flags under -Werror.
+    build build-release -DCMAKE_BUILD_TYPE=Release -DSAS_BUILD_TESTS=OFF -DSAS_BUILD_BENCH=OFF
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DSAS_SANITIZE=ON -DSAS_BUILD_BENCH=OFF
     (cd "$repo/build-asan" && \
       ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -59,10 +59,12 @@ mkdir -p "$out" "$share/out" "$share/bin" "$share/pkg" "$cache/apt-archives"
 report="$out/report.md"
 declare -a rows=()
 failures=0
-row() {  # row PASS|FAIL <check> <details>
-  rows+=("| $2 | $1 | $3 |")
+row() {  # row PASS|FAIL <check> <details> (this machine's folders left out of the details)
+  local details=${3//$work\//}
+  details=${details//$repo\//}
+  rows+=("| $2 | $1 | $details |")
   [ "$1" = PASS ] || failures=$((failures + 1))
-  echo "boot-test: $1 $2 - $3"
+  echo "boot-test: $1 $2 - $details"
 }
 phase() { echo "boot-test: [$(elapsed) s] $*"; }
 

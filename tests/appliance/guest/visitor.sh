@@ -168,6 +168,13 @@ if wait_journal 'recording started' 60; then
     # time here; the kiosk's own start is CPU work, slowed down by the emulation (the host
     # measures it natively and judges the 5 s).
     exec_s=$(awk '{ printf "%.2f", $1 / 1e6 }' <<<"$(systemctl show -p ExecMainStartTimestampMonotonic --value "$unit")")
+    exit_s=$(awk '{ printf "%.2f", $1 / 1e6 }' <<<"$(systemctl show -p ExecMainExitTimestampMonotonic --value "$unit")")
+    # The old process's end (its core dump written) and the restart delay, when systemd still
+    # holds the old exit time.
+    if le "$exit_s" "$exec_s" && le "$t_kill" "$exit_s"; then
+      value segv_crash_handling_s "$(sub "$exit_s" "$t_kill")"
+      value segv_restart_delay_s "$(sub "$exec_s" "$exit_s")"
+    fi
     value segv_to_exec_s "$(sub "$exec_s" "$t_kill")"
     value segv_kiosk_start_s "$(sub "$(ready_s)" "$exec_s")"
     value segv_to_ready_s "$(sub "$(ready_s)" "$t_kill")"
