@@ -230,6 +230,12 @@ struct KioskWindow::Impl {
         chord_since_ns = t;
         if (options.staff_chord.hold_s <= 0.0) FireChord(out, t);
       } else if (!down) {
+        // Held long enough by the key's own time stamps, even if the loop was too busy to look
+        // while it was held (a slow frame): it counts.
+        if (chord_held && !chord_fired &&
+            static_cast<double>(t - chord_since_ns) * 1e-9 >= options.staff_chord.hold_s) {
+          FireChord(out, t);
+        }
         chord_held = false;  // any part of the chord released: start over
       }
       if (code == chord.key) return;  // the chord's key is not also a token/record key

@@ -206,6 +206,22 @@ TEST_CASE("the chord key without its modifiers, or released early, is no staff c
   CHECK_FALSE(window.staff_panel_open());
 }
 
+TEST_CASE("a staff chord held long enough counts even when the loop only looks after its release",
+          "[render]") {
+  OffscreenDriver driver;
+  sas::ui::KioskWindowOptions options;
+  options.staff_chord.hold_s = 0.1;
+  KioskWindow window(options);
+  window.Open();
+  // A slow frame: the key goes down and up again while nobody polls.
+  PushKey(SDLK_s, true, KMOD_LCTRL | KMOD_LALT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  PushKey(SDLK_s, false, KMOD_LCTRL | KMOD_LALT);
+  const auto events = window.PollEvents();
+  REQUIRE(OfKind(events, UiEvent::Kind::kStaffChord).size() == 1);
+  CHECK(window.staff_panel_open());
+}
+
 TEST_CASE("a chord a visitor could type by accident, or a misspelt one, is refused at set-up",
           "[render]") {
   OffscreenDriver driver;

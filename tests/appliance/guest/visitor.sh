@@ -153,6 +153,9 @@ sleep 2
 judge sighup_keeps_running "pid $pid -> $(main_pid)" test "$(main_pid)" = "$pid"
 judge sighup_journal "journal line" wait_journal 'SIGHUP' 10
 cp "$counters" "$out/counters-after-hup.toml" 2>/dev/null
+visits() { sed -n 's/^sessions *= *\([0-9]*\).*/\1/p' "$1" 2>/dev/null | head -1; }
+judge sighup_counts_kept "visits $(visits "$out/counters-before-hup.toml") -> $(visits "$out/counters-after-hup.toml")" \
+  test "$(visits "$out/counters-after-hup.toml")" -ge "$(visits "$out/counters-before-hup.toml")"
 
 mark_journal
 dev key r tap
@@ -217,8 +220,8 @@ fi
 sleep 3
 
 # --- 7. devices unplugged and back: a warning line, a staff-panel line, working again
-dev chord 1.3
-wait_journal 'staff panel opened' 20
+dev chord 2.5
+judge staff_panel_opens "journal: staff panel opened" wait_journal 'staff panel opened' 20
 sleep 1.5
 shot panel
 for device in pen board; do
@@ -235,7 +238,7 @@ for device in pen board; do
   sleep 1.5
   shot "panel_${device}_back"
 done
-dev chord 1.3
+dev chord 2.5
 wait_journal 'staff panel closed' 20
 sleep 1
 # After the replug the pen strokes again and the board switches again.
@@ -257,7 +260,6 @@ wait "$capture_pid" 2>/dev/null
 config=/etc/sketch-a-scratch/kiosk.toml
 sha_config=$(sha256sum <"$config")
 cp "$counters" "$out/counters-before-upgrade.toml"
-visits() { sed -n 's/^sessions *= *\([0-9]*\).*/\1/p' "$1" 2>/dev/null | head -1; }
 apt-get install -y -q "$share/pkg/newer.deb" >"$out/upgrade.log" 2>&1
 judge upgrade_installed "$(dpkg-query -W -f='${Version}' sketch-a-scratch)" \
   test "$(dpkg-query -W -f='${Version}' sketch-a-scratch)" = "$(cat "$share/pkg/newer.version")"
