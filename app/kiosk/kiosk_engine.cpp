@@ -74,6 +74,20 @@ std::vector<std::string> FindTextureFiles() {
   throw std::runtime_error("the four kiosk textures were not found (searched " + searched + ")");
 }
 
+std::vector<std::string> KioskTextureNames() {
+  return kTextureKeys;
+}
+
+std::string FindTextureFile(const std::string& name) {
+  if (std::find(kTextureKeys.begin(), kTextureKeys.end(), name) == kTextureKeys.end()) return {};
+  for (const auto& dir : DataDirs("textures")) {
+    const fs::path file = fs::path(dir) / name / "texture.toml";
+    std::error_code error;
+    if (fs::is_regular_file(file, error)) return file.string();
+  }
+  return {};
+}
+
 std::string FindCuesDir() {
   std::vector<std::string> dirs = DataDirs("cues");
   // The build generates the cues in its own tree (<build>/textures/cues, the binary being
@@ -438,6 +452,13 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_pen_ = pen;
   last_fx_ = x_m;
   last_fy_ = y_m;
+}
+
+int KioskEngine::TokenForTexture(std::size_t texture_index) const {
+  for (std::size_t token = 0; token < token_texture_.size(); ++token) {
+    if (token_texture_[token] == static_cast<int>(texture_index)) return static_cast<int>(token);
+  }
+  return -1;
 }
 
 void KioskEngine::OnToken(std::int64_t now_ns, int token) {
