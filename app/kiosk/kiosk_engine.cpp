@@ -12,6 +12,7 @@
 #include "kiosk/atomic_file.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/counters_file.h"
+#include "surface/cue_library.h"
 #include "kiosk/output_gains.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
@@ -231,6 +232,9 @@ void KioskEngine::LoadCues() {
       limits.target_rate_hz = fs_hz;
       limits.max_duration_s = 30.0;
       const auto clip = surface::ReadAudioFile(path.string(), limits);
+      if (const std::string problem = surface::CueLevelProblem(clip); !problem.empty()) {
+        throw std::runtime_error(path.string() + ": " + problem);
+      }
       std::vector<float> stereo(clip.samples.size() * 2, 0.0f);
       for (std::size_t i = 0; i < clip.samples.size(); ++i) stereo[2 * i] = clip.samples[i];
       return AddClip(file, std::move(stereo));

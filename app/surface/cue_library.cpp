@@ -11,6 +11,12 @@ namespace {
 constexpr double kMaxCueClippedFraction = 0.001;
 }  // namespace
 
+std::string CueLevelProblem(const AudioClip& clip) {
+  if (clip.clipped_fraction <= kMaxCueClippedFraction) return {};
+  return std::to_string(clip.clipped_fraction * 100.0) +
+         " % of the samples at or beyond full scale (a damaged file)";
+}
+
 const std::vector<std::string>& MessageCueNames() {
   static const std::vector<std::string> names = {"record_countdown", "too_quiet", "too_loud",
                                                  "no_microphone", "voice_ready"};
@@ -48,13 +54,8 @@ CueLibrary CueLibrary::Load(const std::string& dir, const std::vector<std::strin
         library.problems_.push_back(path.string() + ": silent");
         continue;
       }
-      // cue_maker writes every cue with its peak at or below -1 dBFS. A float WAV can hold any
-      // value (1e30 decodes fine, clipped by the reader to full scale): a cue with more than a
-      // stray sample at full scale is a damaged file, and would play as a full-scale square wave.
-      if (clip.clipped_fraction > kMaxCueClippedFraction) {
-        library.problems_.push_back(path.string() + ": " +
-                                    std::to_string(clip.clipped_fraction * 100.0) +
-                                    " % of the samples at or beyond full scale (a damaged file)");
+      if (const std::string problem = CueLevelProblem(clip); !problem.empty()) {
+        library.problems_.push_back(path.string() + ": " + problem);
         continue;
       }
       library.cues_[file.substr(0, file.size() - 4)] = std::move(clip.samples);
