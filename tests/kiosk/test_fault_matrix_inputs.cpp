@@ -6,7 +6,10 @@
 //                left out with one problem line, the others still play.
 //   arguments    a bad argument form is a usage error: exit 2, one message naming the option, and
 //                nothing run; --help exits 0. The kiosk with no display exits 1 writing nothing.
+#include <sys/resource.h>
+
 #include <catch2/catch.hpp>
+#include <csignal>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -15,6 +18,8 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +27,7 @@
 #include "headless_demo.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/command_line.h"
+#include "kiosk/counters_file.h"
 #include "kiosk/gesture.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/kiosk_engine.h"
@@ -377,4 +383,130 @@ TEST_CASE("fault matrix: command arguments - --help exits 0 on every command, th
     CHECK_FALSE(fs::exists(state));
   }
   unsetenv("SDL_VIDEODRIVER");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Surface: the state folder (usage counters). A history is saved, the folder then breaks, the
+// kiosk starts, one stroke, it saves. Promise: the save fails without harm - the saved history is
+// still there byte for byte, no temporary file is left behind, and the failure is said once - and
+// the counts go on in memory. A full disk is this process's file-size limit (RLIMIT_FSIZE, with
+// SIGXFSZ ignored): it fails writes with EFBIG as a full disk fails them with ENOSPC, and works
+// as root, which a read-only folder (chmod) does not.
+
+namespace {
+
+// Lowers this process's file-size limit for a scope.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit lowered = saved_;
+    lowered.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lowered);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = SIG_DFL;
+};
+
+void OneStroke(sas::kiosk::KioskEngine& engine) {
+  engine.SetAudioRunning(true);
+  sas::kiosk::PenInput pen;
+  pen.time_ns = 1'000'000'000;
+  pen.x_px = 400;
+  pen.y_px = 300;
+  pen.pressure = 0.8;
+  pen.tip_down = true;
+  engine.OnPen(pen);
+  pen.time_ns += 50'000'000;
+  pen.tip_down = false;
+  pen.pressure = 0.0;
+  engine.OnPen(pen);
+}
+
+}  // namespace
+
+TEST_CASE("fault matrix: state folder - a full disk or a broken folder loses no saved history",
+          "[kiosk][faults]") {
+  auto& log = sas::platform::DefaultLogger();
+  log.SetEchoToStderr(false);
+  const std::vector<std::string> keys = {"wooden_board"};
+  const struct {
+    const char* name;
+    rlim_t file_size_limit;  // 0: none
+    bool folder_is_file;
+  } rows[] = {
+      {"disk full after 16 bytes", 16, false},
+      {"disk full at the first byte", 1, false},
+      {"the state folder is a regular file", 0, true},
+  };
+  for (const auto& row : rows) {
+    INFO("row: state folder, " << row.name);
+    sas::test::TempDir dir;
+    std::string state = dir.file("state");
+    fs::create_directory(state);
+    std::string path = (fs::path(state) / "counters.toml").string();
+    sas::kiosk::UsageCounters before;
+    before.sessions = 5000;
+    before.strokes_per_texture = {12000};
+    std::string error;
+    REQUIRE(sas::kiosk::SaveCounters(path, before, keys, &error));
+    const std::string saved = ReadAll(path);
+    if (row.folder_is_file) {
+      // The folder replaced by a file holding the history (a restore gone wrong): the kiosk
+      // must neither write into it nor replace it.
+      state = dir.Write("state-file", saved);
+      path = (fs::path(state) / "counters.toml").string();
+    }
+    log.Clear();
+    sas::kiosk::KioskEngineOptions options;
+    options.virtual_clock = true;
+    options.cues_dir = "/nonexistent";
+    options.texture_paths = {kSource + "/textures/wooden_board/texture.toml"};
+    options.counters_path = path;
+    const auto listing = [](const std::string& folder) {
+      std::set<std::string> names;
+      std::error_code ec;
+      if (fs::is_directory(folder, ec)) {
+        for (const auto& entry : fs::directory_iterator(folder)) {
+          names.insert(entry.path().filename().string());
+        }
+      }
+      return names;
+    };
+    {
+      sas::kiosk::KioskEngine engine(options);
+      const auto files_at_start = listing(state);  // counters.toml and its backup
+      OneStroke(engine);
+      std::optional<FileSizeLimit> limit;
+      if (row.file_size_limit > 0) limit.emplace(row.file_size_limit);
+      const bool saved_ok = engine.SaveCounters(&error);
+      limit.reset();
+      CHECK_FALSE(saved_ok);
+      CHECK(ReadAll(row.folder_is_file ? state : path) == saved);
+      CHECK(listing(state) == files_at_start);  // no temporary left behind
+      CHECK(engine.session().counters().strokes_per_texture.at(0) >= 1);  // counting on
+    }
+    // The engine saves again on its way out; with room on the disk again nothing is lost.
+    if (!row.folder_is_file) {
+      sas::kiosk::UsageCounters after;
+      sas::kiosk::LoadCounters(path, keys, &after, &error);
+      CHECK(after.sessions >= before.sessions + 1);
+    } else {
+      CHECK(ReadAll(state) == saved);
+    }
+    int warnings = 0;
+    for (const auto& line : log.Recent()) {
+      if (line.level >= sas::platform::LogLevel::kWarn) ++warnings;
+    }
+    CHECK(warnings >= 1);
+  }
 }
