@@ -30,9 +30,10 @@ constexpr const char* kCommands =
 
 int RunDemo(const Args& args) {
   sas::app::HeadlessOptions options;
-  CLI::App app("Runs the scripted headless visit (the kiosk's engine, offline), writing WAVs, "
-               "PNGs and visit.txt.",
-               "demo");
+  CLI::App app(
+      "Runs the scripted headless visit (the kiosk's engine, offline), writing WAVs, "
+      "PNGs and visit.txt.",
+      "demo");
   sas::app::AddHeadlessOptions(app, options);
   if (const int code = sas::kiosk::ParseCommandLine(app, args, stdout, stderr); code >= 0) {
     return code;
@@ -63,9 +64,10 @@ int RunDefault(const Args& args) {
   sas::app::HeadlessOptions options;
   bool version = false;
   bool list_devices = false;
-  CLI::App app("Sketch-a-Scratch: with no command, the kiosk on the display, or with no display "
-               "the headless visit (--out, --quick shape it).",
-               "");
+  CLI::App app(
+      "Sketch-a-Scratch: with no command, the kiosk on the display, or with no display "
+      "the headless visit (--out, --quick shape it).",
+      "");
   app.footer(kCommands);
   sas::app::AddHeadlessOptions(app, options);
   app.add_flag("--version", version, "print the version");

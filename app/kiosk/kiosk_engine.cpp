@@ -12,7 +12,6 @@
 #include "kiosk/atomic_file.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/counters_file.h"
-#include "surface/cue_library.h"
 #include "kiosk/output_gains.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
@@ -20,6 +19,7 @@
 #include "platform/log/log.h"
 #include "sas/version.h"
 #include "surface/audio_file.h"
+#include "surface/cue_library.h"
 #include "surface/image_surface.h"
 #include "surface/sound_image.h"
 

@@ -109,9 +109,10 @@ namespace {
 // The render command line on the shared parser; `sweep_mps` is copied into options after parsing
 // (CLI11 fills plain values, the option is optional).
 struct RenderCli {
-  CLI::App app{"Renders a material, a surface and a gesture through the kiosk's synth to a "
-               "2-channel WAV (ch 1 sound, ch 2 haptic).",
-               "render"};
+  CLI::App app{
+      "Renders a material, a surface and a gesture through the kiosk's synth to a "
+      "2-channel WAV (ch 1 sound, ch 2 haptic).",
+      "render"};
   double sweep_mps = 0.05;
   std::string format = "float";
   std::string style = "auto";
@@ -130,8 +131,7 @@ struct RenderCli {
                        "\"slow stroke\"");
     AddNumberOption(app, "--sweep-mps", sweep_mps, 0.001, 2.0,
                     "speed of the \"passive sweep\" gesture, m/s (default 0.05)");
-    app.add_option("--out", options.out_path, "2-channel WAV: ch 1 sound, ch 2 haptic")
-        ->required();
+    app.add_option("--out", options.out_path, "2-channel WAV: ch 1 sound, ch 2 haptic")->required();
     app.add_option("--fs", options.sample_rate_hz, "sample rate, Hz (default 48000)")
         ->check(CLI::Range(8000, 192000));
     AddNumberOption(app, "--tail-s", options.tail_s, 0.0, 600.0,
@@ -153,8 +153,7 @@ struct RenderCli {
 
   // After a successful parse: the choices CLI11 checked, and the cross-option rule.
   void Finish(RenderOptions& options) const {
-    options.format =
-        format == "pcm24" ? surface::WavFormat::kPcm24 : surface::WavFormat::kFloat32;
+    options.format = format == "pcm24" ? surface::WavFormat::kPcm24 : surface::WavFormat::kFloat32;
     if (style == "scrape") options.style = synth::ProbeStyle::kScrape;
     if (style == "rub") options.style = synth::ProbeStyle::kRub;
     if (style == "roll") options.style = synth::ProbeStyle::kRoll;
@@ -333,9 +332,9 @@ int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::
   try {
     cli.Finish(options);
   } catch (const RenderError& error) {
-    std::fprintf(err,
-                 "sketch-a-scratch render: %s\n(sketch-a-scratch render --help lists the options)\n",
-                 error.what());
+    std::fprintf(
+        err, "sketch-a-scratch render: %s\n(sketch-a-scratch render --help lists the options)\n",
+        error.what());
     return kExitUsage;
   }
   try {

@@ -132,8 +132,9 @@ std::string TexturePath(const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("fault matrix: counters file - no damage lowers a count and the damaged file is kept aside",
-          "[kiosk][faults]") {
+TEST_CASE(
+    "fault matrix: counters file - no damage lowers a count and the damaged file is kept aside",
+    "[kiosk][faults]") {
   auto& log = sas::platform::DefaultLogger();
   log.SetEchoToStderr(false);
   int rows = 0;

@@ -9,8 +9,8 @@
 #include <sys/resource.h>
 
 #include <catch2/catch.hpp>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -59,8 +59,12 @@ std::string Replace(std::string text, const std::string& from, const std::string
 // A mono 32-bit float WAV written byte by byte: WriteWav refuses NaN and infinities, and a damaged
 // file is exactly what these rows need.
 void WriteRawFloatWav(const std::string& path, const std::vector<float>& samples) {
-  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-  const auto u16 = [](std::uint16_t v) { return std::string(reinterpret_cast<const char*>(&v), 2); };
+  const auto u32 = [](std::uint32_t v) {
+    return std::string(reinterpret_cast<const char*>(&v), 4);
+  };
+  const auto u16 = [](std::uint16_t v) {
+    return std::string(reinterpret_cast<const char*>(&v), 2);
+  };
   const auto data_bytes = static_cast<std::uint32_t>(samples.size() * sizeof(float));
   std::string bytes = "RIFF" + u32(36 + data_bytes) + "WAVEfmt " + u32(16) + u16(3) + u16(1) +
                       u32(48000) + u32(48000 * 4) + u16(4) + u16(32) + "data" + u32(data_bytes);
@@ -119,7 +123,9 @@ TEST_CASE("fault matrix: material files - a damaged file is refused naming file 
       {"empty file", [](const sas::test::TempDir& dir) { return dir.Write("wood.toml", ""); }, ""},
       {"binary junk",
        [](const sas::test::TempDir& dir) {
-         return dir.Write("wood.toml", std::string("\x7f" "ELF\x02\x01\x00\xff\xfe", 9));
+         return dir.Write("wood.toml", std::string("\x7f"
+                                                   "ELF\x02\x01\x00\xff\xfe",
+                                                   9));
        },
        ""},
       {"a directory named like the file",
@@ -129,9 +135,8 @@ TEST_CASE("fault matrix: material files - a damaged file is refused naming file 
        },
        ""},
   };
-  CheckRefused("material file", rows, [](const std::string& path) {
-    (void)sas::kiosk::LoadMaterialFile(path);
-  });
+  CheckRefused("material file", rows,
+               [](const std::string& path) { (void)sas::kiosk::LoadMaterialFile(path); });
   CHECK(rows.size() == 6);
 }
 
@@ -162,14 +167,12 @@ TEST_CASE("fault matrix: texture files - a damaged texture is refused naming the
        "height_scale_mm"},
       {"height_scale_mm 1e30", texture(edit("height_scale_mm = 2.0", "height_scale_mm = 1e30")),
        "height_scale_mm"},
-      {"an unknown key", texture(edit("relief_mm = 0.3", "relief_mm = 0.3\ncolour = 1")),
-       "colour"},
+      {"an unknown key", texture(edit("relief_mm = 0.3", "relief_mm = 0.3\ncolour = 1")), "colour"},
       {"empty texture.toml",
        texture([](const fs::path& f) { std::ofstream(f / "texture.toml", std::ios::trunc); }), ""},
   };
-  CheckRefused("texture file", rows, [](const std::string& path) {
-    (void)sas::kiosk::LoadProfile(path);
-  });
+  CheckRefused("texture file", rows,
+               [](const std::string& path) { (void)sas::kiosk::LoadProfile(path); });
   CHECK(rows.size() == 6);
 }
 
@@ -191,9 +194,8 @@ TEST_CASE("fault matrix: pictures - a damaged picture is refused naming the file
        },
        ""},
   };
-  CheckRefused("picture", rows, [](const std::string& path) {
-    (void)sas::surface::HeightFieldFromImageFile(path);
-  });
+  CheckRefused("picture", rows,
+               [](const std::string& path) { (void)sas::surface::HeightFieldFromImageFile(path); });
   CHECK(rows.size() == 5);
 }
 
@@ -211,9 +213,8 @@ TEST_CASE("fault matrix: gesture files - a damaged gesture is refused naming fil
       {"empty file", csv(""), ""},
       {"header only", csv("t,x,y,pressure,tilt\n"), ""},
   };
-  CheckRefused("gesture file", rows, [](const std::string& path) {
-    (void)sas::kiosk::LoadGestureCsv(path);
-  });
+  CheckRefused("gesture file", rows,
+               [](const std::string& path) { (void)sas::kiosk::LoadGestureCsv(path); });
   CHECK(rows.size() == 6);
 }
 
@@ -223,12 +224,14 @@ TEST_CASE("fault matrix: cue WAVs - a damaged cue is left out with one problem l
     const char* name;
     std::function<void(const std::string&)> damage;
   } rows[] = {
-      {"NaN samples", [](const std::string& p) {
+      {"NaN samples",
+       [](const std::string& p) {
          auto s = Tone(0.5f);
          s[100] = std::numeric_limits<float>::quiet_NaN();
          WriteRawFloatWav(p, s);
        }},
-      {"infinite samples", [](const std::string& p) {
+      {"infinite samples",
+       [](const std::string& p) {
          auto s = Tone(0.5f);
          s[200] = std::numeric_limits<float>::infinity();
          WriteRawFloatWav(p, s);
@@ -258,7 +261,8 @@ TEST_CASE("fault matrix: cue WAVs - a damaged cue is left out with one problem l
     CHECK(engine.cues_loaded() == static_cast<int>(expected.size()) - 1);
     int lines = 0;
     for (const auto& line : log.Recent()) {
-      if (line.component == "cues" && line.message.find("wooden_board_name.wav") != std::string::npos)
+      if (line.component == "cues" &&
+          line.message.find("wooden_board_name.wav") != std::string::npos)
         ++lines;
     }
     CHECK(lines == 1);
@@ -343,21 +347,24 @@ TEST_CASE("fault matrix: command arguments - each bad form exits 2 naming the op
     std::string line = row.command;
     for (const auto& arg : row.args) line += " '" + arg + "'";
     INFO("row: arguments, " << line);
-    const auto result = Capture([&](std::FILE* o, std::FILE* e) { return (*row.run)(row.args, o, e); });
+    const auto result =
+        Capture([&](std::FILE* o, std::FILE* e) { return (*row.run)(row.args, o, e); });
     INFO(result.err);
     CHECK(result.code == 2);
     CHECK_THAT(result.err, Catch::Contains(row.named) && Catch::Contains("--help"));
     CHECK(result.out.empty());
   }
   // A missing value is said to be missing, not an unknown option.
-  const auto missing = Capture([&](std::FILE* o, std::FILE* e) { return kiosk({"--config"}, o, e); });
+  const auto missing =
+      Capture([&](std::FILE* o, std::FILE* e) { return kiosk({"--config"}, o, e); });
   CHECK_THAT(missing.err, Catch::Contains("missing"));
   unsetenv("SDL_VIDEODRIVER");
 }
 
-TEST_CASE("fault matrix: command arguments - --help exits 0 on every command, the kiosk with no "
-          "display exits 1 and writes nothing",
-          "[kiosk][faults]") {
+TEST_CASE(
+    "fault matrix: command arguments - --help exits 0 on every command, the kiosk with no "
+    "display exits 1 and writes nothing",
+    "[kiosk][faults]") {
   setenv("SDL_VIDEODRIVER", "no-such-driver", 1);
   for (const char* command : {"render", "impact", "kiosk", "demo"}) {
     INFO("row: arguments, " << command << " --help");

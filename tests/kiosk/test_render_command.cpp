@@ -342,13 +342,13 @@ TEST_CASE("bad command lines exit with code 2 naming the option and pointing to 
     std::vector<std::string> args;
     const char* named;  // what the one-line message must name
   } bad[] = {
-      {{"--material", "wood"}, "--out"},                   // no --out
-      {{"--out", "x.wav", "--fs", "12.5k"}, "--fs"},       // not a number
-      {{"--out", "x.wav", "--fs", "1000"}, "--fs"},        // out of range
-      {{"--out", "x.wav", "--tail-s", "nan"}, "--tail-s"}, // NaN
-      {{"--out", "x.wav", "--style", "smear"}, "--style"}, // unknown style
-      {{"--out", "x.wav", "--colour", "red"}, "--colour"}, // unknown option
-      {{"--out"}, "--out"},                                // missing value
+      {{"--material", "wood"}, "--out"},                          // no --out
+      {{"--out", "x.wav", "--fs", "12.5k"}, "--fs"},              // not a number
+      {{"--out", "x.wav", "--fs", "1000"}, "--fs"},               // out of range
+      {{"--out", "x.wav", "--tail-s", "nan"}, "--tail-s"},        // NaN
+      {{"--out", "x.wav", "--style", "smear"}, "--style"},        // unknown style
+      {{"--out", "x.wav", "--colour", "red"}, "--colour"},        // unknown option
+      {{"--out"}, "--out"},                                       // missing value
       {{"--out", "x.wav", "--sweep-mps", "0.1"}, "--sweep-mps"},  // not a passive sweep
   };
   for (const auto& row : bad) {
@@ -373,9 +373,8 @@ TEST_CASE("render --help prints the options, kiosk texture names among them, and
 
 TEST_CASE("render takes a kiosk texture by the name its help offers", "[render]") {
   sas::test::TempDir dir;
-  const auto result =
-      Run({"--profile", "broken_glass", "--gesture", "tap", "--tail-s", "0.1", "--out",
-           dir.file("glass.wav")});
+  const auto result = Run({"--profile", "broken_glass", "--gesture", "tap", "--tail-s", "0.1",
+                           "--out", dir.file("glass.wav")});
   INFO(result.err);
   CHECK(result.code == 0);
   CHECK_THAT(result.out, Catch::Contains("glass on broken_glass"));
