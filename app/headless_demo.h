@@ -12,6 +12,7 @@
 // down (the dent visible), the plain pictures, and visit.txt saying what each file shows and where
 // the strokes were. Exits 0 when everything was written.
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -31,9 +32,9 @@ struct HeadlessOptions {
   double tail_s() const { return 2.0; }
 };
 
-// Parses `--out DIR` and `--quick`. Returns false with a message in `error` on bad arguments.
-bool ParseHeadlessArgs(const std::vector<std::string>& args, HeadlessOptions* options,
-                       std::string* error);
+// Adds `--out DIR` and `--quick` to a command line built on the shared parser
+// (kiosk/command_line.h): `demo` and the bare program take them.
+void AddHeadlessOptions(CLI::App& app, HeadlessOptions& options);
 
 // Runs the visit; returns the process exit code (0 ok, 1 failure). Never throws.
 int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* err);

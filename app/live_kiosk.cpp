@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "kiosk/ambient_gain.h"
+#include "kiosk/command_line.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
@@ -31,6 +32,7 @@
 #include "platform/pen/pen_source.h"
 #include "platform/watchdog/watchdog.h"
 #include "sas/version.h"
+#include "ui/display_probe.h"
 #include "ui/kiosk_window.h"
 #include "ui/overlay.h"
 #include "ui/text.h"
@@ -206,17 +208,23 @@ class StaffPanel {
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends) {
   KioskArgs options;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--config" && i + 1 < args.size()) {
-      options.config_path = args[++i];
-    } else if (args[i] == "--state-dir" && i + 1 < args.size()) {
-      options.state_dir = args[++i];
-    } else {
-      std::fprintf(
-          err, "sketch-a-scratch kiosk: unknown option \"%s\" (--config FILE, --state-dir DIR)\n",
-          args[i].c_str());
-      return 2;
-    }
+  CLI::App app("Runs the kiosk full-screen on the display (exits 1 when there is none).", "kiosk");
+  app.add_option("--config", options.config_path,
+                 "configuration file (default /etc/sketch-a-scratch/kiosk.toml)");
+  app.add_option("--state-dir", options.state_dir,
+                 "folder for the usage counters and the last good configuration (default "
+                 "$STATE_DIRECTORY, else $XDG_STATE_HOME/sketch-a-scratch, else "
+                 "~/.local/state/sketch-a-scratch)");
+  if (const int code = kiosk::ParseCommandLine(app, args, out, err); code >= 0) return code;
+  // Without a screen SDL falls back to its invisible offscreen driver and the kiosk would run
+  // for no one, counting visits into the home folder. Refuse before anything is written; a test
+  // that wants the virtual driver asks for it by name in SDL_VIDEODRIVER (ProbeDisplay).
+  if (const auto display = ui::ProbeDisplay(); !display.available) {
+    std::fprintf(err,
+                 "sketch-a-scratch kiosk: no display (%s); set DISPLAY or WAYLAND_DISPLAY, or run "
+                 "on a console with KMS (`sketch-a-scratch demo` runs without one)\n",
+                 display.problem.c_str());
+    return kiosk::kExitRuntimeError;
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
   // SIGHUP (the unit's reload) would otherwise end the kiosk and lose the counters since the

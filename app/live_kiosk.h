@@ -3,7 +3,8 @@
 // the token switches and record button, the microphone and the speaker/transducer, all wired to
 // one KioskEngine, plus the staff panel, the watchdog and the device status board.
 //
-//   sketch-a-scratch kiosk [--config FILE]   (FILE default /etc/sketch-a-scratch/kiosk.toml)
+//   sketch-a-scratch kiosk [--config FILE] [--state-dir DIR]   (FILE default
+//   /etc/sketch-a-scratch/kiosk.toml); exits 1 at once when there is no display.
 
 #include <cstdio>
 #include <functional>

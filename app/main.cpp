@@ -2,12 +2,11 @@
 // display, or, on a machine with no display, runs its headless default. Subcommands serve staff
 // and engineers (device list, offline render, calibration).
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include "headless_demo.h"
+#include "kiosk/command_line.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/render_command.h"
 #include "live_kiosk.h"
@@ -18,31 +17,28 @@
 namespace {
 
 using Args = std::vector<std::string>;
+using sas::kiosk::kExitOk;
+
+constexpr const char* kCommands =
+    "Commands (each answers --help):\n"
+    "  demo [--out DIR] [--quick]  the headless visit even when there is a display\n"
+    "  kiosk [--config FILE] [--state-dir DIR]\n"
+    "                              the kiosk (exits 1 when there is no display); also --kiosk\n"
+    "  render --out FILE.wav ...   render a material, surface and gesture to a 2-channel WAV\n"
+    "  impact ...                  one probe impact on a rigid wall, JSON vs the closed form\n"
+    "Exit status: 0 ok, 1 runtime error, 2 usage error.";
 
 int RunDemo(const Args& args) {
   sas::app::HeadlessOptions options;
-  std::string error;
-  if (!sas::app::ParseHeadlessArgs(args, &options, &error)) {
-    std::fprintf(stderr, "sketch-a-scratch: %s\n", error.c_str());
-    return 2;
+  CLI::App app(
+      "Runs the scripted headless visit (the kiosk's engine, offline), writing WAVs, "
+      "PNGs and visit.txt.",
+      "demo");
+  sas::app::AddHeadlessOptions(app, options);
+  if (const int code = sas::kiosk::ParseCommandLine(app, args, stdout, stderr); code >= 0) {
+    return code;
   }
   return sas::app::RunHeadlessDemo(options, stdout, stderr);
-}
-
-void PrintUsage() {
-  std::printf(
-      "usage: sketch-a-scratch [command] [options]\n"
-      "  (no command) [--out DIR]\n"
-      "                   start the kiosk; with no display, the headless default: a scripted\n"
-      "                   visit written as WAVs and PNGs to DIR (default sketch-a-scratch-demo)\n"
-      "  demo [--out DIR] the headless visit even when there is a display\n"
-      "  kiosk [--config FILE]  the kiosk (fails when there is no display)\n"
-      "  render ...       render a material, surface and gesture to a 2-channel WAV\n"
-      "                   (sketch-a-scratch render --help)\n"
-      "  impact ...       simulate one probe impact on a rigid wall, print JSON vs closed form\n"
-      "  --list-devices   print the audio devices, GPIO chips, USB adapters and tablets found\n"
-      "  --version        print the version\n"
-      "  --help           this text\n");
 }
 
 // Prints every device class, found or not, and says what the kiosk will do without it.
@@ -65,6 +61,29 @@ void PrintDeviceReport(const sas::ui::DisplayInfo& display) {
 // No command: the kiosk on the display, or the headless visit when there is none. With a display
 // the kiosk always runs (silent without an audio device): never the demo on the box.
 int RunDefault(const Args& args) {
+  sas::app::HeadlessOptions options;
+  bool version = false;
+  bool list_devices = false;
+  CLI::App app(
+      "Sketch-a-Scratch: with no command, the kiosk on the display, or with no display "
+      "the headless visit (--out, --quick shape it).",
+      "");
+  app.footer(kCommands);
+  sas::app::AddHeadlessOptions(app, options);
+  app.add_flag("--version", version, "print the version");
+  app.add_flag("--list-devices", list_devices,
+               "print the display, audio devices, GPIO chips, USB adapters and tablets found");
+  if (const int code = sas::kiosk::ParseCommandLine(app, args, stdout, stderr); code >= 0) {
+    return code;
+  }
+  if (version) {
+    std::printf("sketch-a-scratch %s\n", sas::kVersion);
+    return kExitOk;
+  }
+  if (list_devices) {
+    PrintDeviceReport(sas::ui::ProbeDisplay());
+    return kExitOk;
+  }
   std::printf("Sketch-a-Scratch %s\n", sas::kVersion);
   const auto display = sas::ui::ProbeDisplay();
   std::printf("Hardware:\n");
@@ -73,37 +92,21 @@ int RunDefault(const Args& args) {
   // --out/--quick only shape the headless visit: the kiosk on a display takes its configuration.
   if (display.available) return sas::app::RunKiosk({}, stdout, stderr);
   std::printf("No display (%s).\n", display.problem.c_str());
-  return RunDemo(args);
+  return sas::app::RunHeadlessDemo(options, stdout, stderr);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Args args(argv + 1, argv + argc);
-  if (args.empty() || args[0].rfind("--out", 0) == 0 || args[0] == "--quick") {
-    return RunDefault(args);
-  }
-  const std::string& command = args[0];
-  const Args rest(args.begin() + 1, args.end());
-  if (command == "--help" || command == "-h" || command == "help") {
-    PrintUsage();
-    return EXIT_SUCCESS;
-  }
-  if (command == "--version") {
-    std::printf("sketch-a-scratch %s\n", sas::kVersion);
-    return EXIT_SUCCESS;
-  }
-  if (command == "render") {
-    return sas::kiosk::RunRenderCommand(rest, stdout, stderr);
-  }
+  // A subcommand takes the rest of the line; anything else (options, nothing, a stray word) is
+  // the top-level command line, whose parser reports what it does not know.
+  const std::string command = args.empty() ? "" : args[0];
+  const Args rest(args.begin() + (args.empty() ? 0 : 1), args.end());
+  if (command == "help") return RunDefault({"--help"});
+  if (command == "render") return sas::kiosk::RunRenderCommand(rest, stdout, stderr);
   if (command == "impact") return sas::kiosk::RunImpactCommand(rest, stdout, stderr);
   if (command == "demo") return RunDemo(rest);
   if (command == "kiosk" || command == "--kiosk") return sas::app::RunKiosk(rest, stdout, stderr);
-  if (command == "--list-devices") {
-    PrintDeviceReport(sas::ui::ProbeDisplay());
-    return EXIT_SUCCESS;
-  }
-  std::fprintf(stderr, "sketch-a-scratch: unknown command '%s'\n", command.c_str());
-  PrintUsage();
-  return 2;
+  return RunDefault(args);
 }

@@ -199,8 +199,13 @@ surface::HeightField LoadProfile(const std::string& name_or_path) {
   try {
     if (IsTextureFile(name_or_path)) {
       const surface::TextureFile texture = surface::LoadTextureFile(name_or_path);
-      return surface::LoadHeightMapPng(texture.height_map_path, texture.height_scale_mm,
-                                       surface::DisplayGeometry{}.pixel_pitch_mm());
+      try {
+        return surface::LoadHeightMapPng(texture.height_map_path, texture.height_scale_mm,
+                                         surface::DisplayGeometry{}.pixel_pitch_mm());
+      } catch (const std::exception& error) {
+        // The height map's own message names only the PNG; say which texture wanted it.
+        throw ProfileError(name_or_path + ": height_map: " + error.what());
+      }
     }
     return surface::HeightFieldFromImageFile(name_or_path);
   } catch (const std::exception& error) {

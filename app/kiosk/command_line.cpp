@@ -38,8 +38,11 @@ int ParseCommandLine(CLI::App& app, const std::vector<std::string>& args, std::F
     std::fputs(app.help().c_str(), out);
     return kExitOk;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(err, "sketch-a-scratch %s: %s\n(sketch-a-scratch %s --help lists the options)\n",
-                 app.get_name().c_str(), e.what(), app.get_name().c_str());
+    // The top-level parser has no name: "sketch-a-scratch: ...", not "sketch-a-scratch : ...".
+    const std::string command =
+        app.get_name().empty() ? "sketch-a-scratch" : "sketch-a-scratch " + app.get_name();
+    std::fprintf(err, "%s: %s\n(%s --help lists the options)\n", command.c_str(), e.what(),
+                 command.c_str());
     return kExitUsage;
   }
   return -1;

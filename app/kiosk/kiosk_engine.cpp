@@ -19,6 +19,7 @@
 #include "platform/log/log.h"
 #include "sas/version.h"
 #include "surface/audio_file.h"
+#include "surface/cue_library.h"
 #include "surface/image_surface.h"
 #include "surface/sound_image.h"
 
@@ -72,6 +73,20 @@ std::vector<std::string> FindTextureFiles() {
     searched += (searched.empty() ? "" : ", ") + dir;
   }
   throw std::runtime_error("the four kiosk textures were not found (searched " + searched + ")");
+}
+
+std::vector<std::string> KioskTextureNames() {
+  return kTextureKeys;
+}
+
+std::string FindTextureFile(const std::string& name) {
+  if (std::find(kTextureKeys.begin(), kTextureKeys.end(), name) == kTextureKeys.end()) return {};
+  for (const auto& dir : DataDirs("textures")) {
+    const fs::path file = fs::path(dir) / name / "texture.toml";
+    std::error_code error;
+    if (fs::is_regular_file(file, error)) return file.string();
+  }
+  return {};
 }
 
 std::string FindCuesDir() {
@@ -217,6 +232,9 @@ void KioskEngine::LoadCues() {
       limits.target_rate_hz = fs_hz;
       limits.max_duration_s = 30.0;
       const auto clip = surface::ReadAudioFile(path.string(), limits);
+      if (const std::string problem = surface::CueLevelProblem(clip); !problem.empty()) {
+        throw std::runtime_error(path.string() + ": " + problem);
+      }
       std::vector<float> stereo(clip.samples.size() * 2, 0.0f);
       for (std::size_t i = 0; i < clip.samples.size(); ++i) stereo[2 * i] = clip.samples[i];
       return AddClip(file, std::move(stereo));
@@ -438,6 +456,13 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_pen_ = pen;
   last_fx_ = x_m;
   last_fy_ = y_m;
+}
+
+int KioskEngine::TokenForTexture(std::size_t texture_index) const {
+  for (std::size_t token = 0; token < token_texture_.size(); ++token) {
+    if (token_texture_[token] == static_cast<int>(texture_index)) return static_cast<int>(token);
+  }
+  return -1;
 }
 
 void KioskEngine::OnToken(std::int64_t now_ns, int token) {

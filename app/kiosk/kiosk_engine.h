@@ -98,6 +98,11 @@ struct EngineAudioStats {
 // the paper's §5.2 order), from the first of $SAS_DATA_DIR/textures, the source tree and the
 // installed share/sketch-a-scratch/textures that holds them. Throws std::runtime_error when none.
 std::vector<std::string> FindTextureFiles();
+// The kiosk textures' names in token order ("bubble_wrap", "broken_glass", ...).
+std::vector<std::string> KioskTextureNames();
+// textures/<name>/texture.toml for kiosk texture `name`, from the first data folder holding it
+// (the order above); "" when `name` is no kiosk texture or no folder holds it.
+std::string FindTextureFile(const std::string& name);
 // <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
 std::string FindCuesDir();
 
@@ -145,6 +150,8 @@ class KioskEngine final : public platform::AudioRenderer {
   // "<key>: <why>" for each texture left out at start (empty when all four loaded).
   const std::vector<std::string>& texture_failures() const { return texture_failures_; }
   int default_texture() const { return default_texture_; }
+  // The token (switch) that selects textures()[texture_index], -1 when none does.
+  int TokenForTexture(std::size_t texture_index) const;
   SurfaceChoice surface() const { return session_.surface(); }
   bool has_voice() const { return voice_.occupied(kVoiceSlot); }
   // The voice recording as a grey sound image (null when the slot is empty).

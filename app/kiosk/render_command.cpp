@@ -11,7 +11,9 @@
 #include <sstream>
 
 #include "kiosk/builtin_profiles.h"
+#include "kiosk/command_line.h"
 #include "kiosk/gesture.h"
+#include "kiosk/kiosk_engine.h"
 #include "sas/version.h"
 #include "synth/scene.h"
 
@@ -55,40 +57,24 @@ Gesture LoadGesture(const std::string& name_or_path) {
   return LoadGestureCsv(name_or_path);
 }
 
-double ParseNumberArg(const std::string& flag, const std::string& value, double min, double max) {
-  char* end = nullptr;
-  const double number = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(number) ||
-      number < min || number > max) {
-    std::ostringstream message;
-    message << flag << ": \"" << value << "\" is not a number in [" << min << ", " << max << "]";
-    throw RenderError(message.str());
+// The help offers the kiosk textures by name: "broken_glass" means its texture.toml from the data
+// folders, unless a file of that name sits in the working folder (a path always wins).
+std::string ProfilePath(const std::string& name_or_path) {
+  if (MakeBuiltinProfile(name_or_path)) return name_or_path;
+  std::error_code error;
+  if (fs::exists(name_or_path, error)) return name_or_path;
+  const auto names = KioskTextureNames();
+  if (std::find(names.begin(), names.end(), name_or_path) == names.end()) return name_or_path;
+  const std::string file = FindTextureFile(name_or_path);
+  if (file.empty()) {
+    throw RenderError("kiosk texture \"" + name_or_path +
+                      "\" not found in the data folders ($SAS_DATA_DIR/textures, the source tree, "
+                      "the installed share/sketch-a-scratch/textures)");
   }
-  return number;
+  return file;
 }
 
 }  // namespace
-
-const char* RenderUsage() {
-  return "usage: sketch-a-scratch render --out FILE.wav [options]\n"
-         "  --material NAME      material file NAME.toml (default: the texture's, else wood)\n"
-         "  --profile NAME|FILE  built-in profile (grating, rough, bumps, cracks, flat), a\n"
-         "                       kiosk texture (textures/NAME/texture.toml: its height map) or\n"
-         "                       a picture (gray-level changes -> ridges; default grating)\n"
-         "  --gesture NAME|FILE  built-in gesture (\"slow stroke\", \"fast scribble\", \"tap\",\n"
-         "                       \"passive sweep\") or a CSV file t,x,y,pressure,tilt\n"
-         "                       (s, mm, mm, 0..1, degrees; default \"slow stroke\")\n"
-         "  --sweep-mps V        speed of the \"passive sweep\" (default 0.05 m/s)\n"
-         "  --out FILE.wav       2-channel WAV: ch 1 sound, ch 2 haptic (required)\n"
-         "  --fs HZ              sample rate, 8000..192000 (default 48000)\n"
-         "  --tail-s S           seconds rendered after the pen is lifted (default 2)\n"
-         "  --materials-dir DIR  searched before $SAS_DATA_DIR/materials, the source tree and\n"
-         "                       the installed share/sketch-a-scratch/materials\n"
-         "  --format float|pcm24 WAV sample format (default float)\n"
-         "  --style auto|scrape|rub|roll   probe style (default auto: from pen tilt)\n"
-         "  --gain-db DB, --haptic-gain-db DB   output gains (default 0)\n"
-         "  --normalize          scale each channel to a -1 dBFS peak after rendering\n";
-}
 
 std::vector<std::string> MaterialSearchDirs(const std::string& cli_dir) {
   std::vector<std::string> dirs;
@@ -118,77 +104,79 @@ Material FindMaterial(const std::string& name, const std::vector<std::string>& d
       " (searched " + Join(dirs, ", ") + ")");
 }
 
+namespace {
+
+// The render command line on the shared parser; `sweep_mps` is copied into options after parsing
+// (CLI11 fills plain values, the option is optional).
+struct RenderCli {
+  CLI::App app{
+      "Renders a material, a surface and a gesture through the kiosk's synth to a "
+      "2-channel WAV (ch 1 sound, ch 2 haptic).",
+      "render"};
+  double sweep_mps = 0.05;
+  std::string format = "float";
+  std::string style = "auto";
+
+  explicit RenderCli(RenderOptions& options) {
+    app.add_option("--material", options.material,
+                   "material file NAME.toml (default: the texture's, else wood)");
+    app.add_option("--profile", options.profile,
+                   "built-in profile (" + Join(BuiltinProfileNames(), ", ") +
+                       "), a kiosk texture by name (" + Join(KioskTextureNames(), ", ") +
+                       ") or texture.toml file (its height map), or a picture (gray-level "
+                       "changes -> ridges); default grating");
+    app.add_option("--gesture", options.gesture,
+                   "built-in gesture (" + Join(BuiltinGestureNames(), ", ") +
+                       ") or a CSV file t,x,y,pressure,tilt (s, mm, mm, 0..1, degrees); default "
+                       "\"slow stroke\"");
+    AddNumberOption(app, "--sweep-mps", sweep_mps, 0.001, 2.0,
+                    "speed of the \"passive sweep\" gesture, m/s (default 0.05)");
+    app.add_option("--out", options.out_path, "2-channel WAV: ch 1 sound, ch 2 haptic")->required();
+    app.add_option("--fs", options.sample_rate_hz, "sample rate, Hz (default 48000)")
+        ->check(CLI::Range(8000, 192000));
+    AddNumberOption(app, "--tail-s", options.tail_s, 0.0, 600.0,
+                    "seconds rendered after the pen is lifted (default 2)");
+    app.add_option("--materials-dir", options.materials_dir,
+                   "searched before $SAS_DATA_DIR/materials, the source tree and the installed "
+                   "share/sketch-a-scratch/materials");
+    app.add_option("--format", format, "WAV sample format (default float)")
+        ->check(CLI::IsMember({"float", "pcm24"}));
+    app.add_option("--style", style, "probe style (default auto: from the pen's tilt)")
+        ->check(CLI::IsMember({"auto", "scrape", "rub", "roll"}));
+    AddNumberOption(app, "--gain-db", options.sound_gain_db, -120.0, 60.0,
+                    "sound output gain, dB (default 0)");
+    AddNumberOption(app, "--haptic-gain-db", options.haptic_gain_db, -120.0, 60.0,
+                    "haptic output gain, dB (default 0)");
+    app.add_flag("--normalize", options.normalize,
+                 "scale each channel to a -1 dBFS peak after rendering");
+  }
+
+  // After a successful parse: the choices CLI11 checked, and the cross-option rule.
+  void Finish(RenderOptions& options) const {
+    options.format = format == "pcm24" ? surface::WavFormat::kPcm24 : surface::WavFormat::kFloat32;
+    if (style == "scrape") options.style = synth::ProbeStyle::kScrape;
+    if (style == "rub") options.style = synth::ProbeStyle::kRub;
+    if (style == "roll") options.style = synth::ProbeStyle::kRoll;
+    if (app.count("--sweep-mps") > 0) {
+      if (!IsPassiveSweep(options.gesture)) {
+        throw RenderError("--sweep-mps applies to --gesture \"passive sweep\" only");
+      }
+      options.sweep_mps = sweep_mps;
+    }
+  }
+};
+
+}  // namespace
+
 RenderOptions ParseRenderArgs(const std::vector<std::string>& args) {
   RenderOptions options;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string flag = args[i];
-    std::string value;
-    bool has_value = false;
-    if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
-      value = flag.substr(eq + 1);
-      flag = flag.substr(0, eq);
-      has_value = true;
-    }
-    const auto next = [&]() -> std::string {
-      if (has_value) return value;
-      if (i + 1 >= args.size()) throw RenderError(flag + " needs a value");
-      return args[++i];
-    };
-    if (flag == "--material") {
-      options.material = next();
-    } else if (flag == "--profile") {
-      options.profile = next();
-    } else if (flag == "--gesture") {
-      options.gesture = next();
-    } else if (flag == "--out") {
-      options.out_path = next();
-    } else if (flag == "--materials-dir") {
-      options.materials_dir = next();
-    } else if (flag == "--fs") {
-      const double rate = ParseNumberArg(flag, next(), 8000.0, 192000.0);
-      if (rate != std::floor(rate)) throw RenderError("--fs: the sample rate must be an integer");
-      options.sample_rate_hz = static_cast<int>(rate);
-    } else if (flag == "--tail-s") {
-      options.tail_s = ParseNumberArg(flag, next(), 0.0, 600.0);
-    } else if (flag == "--gain-db") {
-      options.sound_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
-    } else if (flag == "--haptic-gain-db") {
-      options.haptic_gain_db = ParseNumberArg(flag, next(), -120.0, 60.0);
-    } else if (flag == "--sweep-mps") {
-      options.sweep_mps = ParseNumberArg(flag, next(), 0.001, 2.0);
-    } else if (flag == "--normalize") {
-      if (has_value) throw RenderError("--normalize takes no value");
-      options.normalize = true;
-    } else if (flag == "--format") {
-      const std::string format = next();
-      if (format == "float") {
-        options.format = surface::WavFormat::kFloat32;
-      } else if (format == "pcm24") {
-        options.format = surface::WavFormat::kPcm24;
-      } else {
-        throw RenderError("--format: \"" + format + "\" is not float or pcm24");
-      }
-    } else if (flag == "--style") {
-      const std::string style = next();
-      if (style == "auto") {
-        options.style.reset();
-      } else if (style == "scrape") {
-        options.style = synth::ProbeStyle::kScrape;
-      } else if (style == "rub") {
-        options.style = synth::ProbeStyle::kRub;
-      } else if (style == "roll") {
-        options.style = synth::ProbeStyle::kRoll;
-      } else {
-        throw RenderError("--style: \"" + style + "\" is not auto, scrape, rub or roll");
-      }
-    } else {
-      throw RenderError("unknown option \"" + args[i] + "\"");
-    }
+  RenderCli cli(options);
+  try {
+    cli.app.parse(std::vector<std::string>(args.rbegin(), args.rend()));
+  } catch (const CLI::ParseError& error) {
+    throw RenderError(error.what());
   }
-  if (options.out_path.empty()) throw RenderError("--out FILE.wav is required");
-  if (options.sweep_mps && !IsPassiveSweep(options.gesture)) {
-    throw RenderError("--sweep-mps applies to --gesture \"passive sweep\" only");
-  }
+  cli.Finish(options);
   return options;
 }
 
@@ -196,11 +184,12 @@ RenderSummary RenderToMemory(const RenderOptions& options, std::vector<float>& a
   if (options.block_frames < 1) throw RenderError("block size must be positive");
   RenderSummary summary;
   std::string material_name = options.material;
-  if (material_name.empty()) material_name = ProfileMaterial(options.profile);
+  const std::string profile = ProfilePath(options.profile);
+  if (material_name.empty()) material_name = ProfileMaterial(profile);
   if (material_name.empty()) material_name = "wood";
   const Material material = FindMaterial(material_name, MaterialSearchDirs(options.materials_dir));
   summary.material_file = material.name;
-  const surface::HeightField field = LoadProfile(options.profile);
+  const surface::HeightField field = LoadProfile(profile);
   // The passive mode: 70 mm along x at the set velocity with a steady push (gesture.h).
   const Gesture gesture = options.sweep_mps && IsPassiveSweep(options.gesture)
                               ? PassiveSweep(*options.sweep_mps, 70.0, 0.4)
@@ -338,16 +327,15 @@ std::string FormatSummary(const RenderOptions& options, const RenderSummary& sum
 
 int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
   RenderOptions options;
+  RenderCli cli(options);
+  if (const int code = ParseCommandLine(cli.app, args, out, err); code >= 0) return code;
   try {
-    if (std::find(args.begin(), args.end(), "--help") != args.end() ||
-        std::find(args.begin(), args.end(), "-h") != args.end()) {
-      std::fputs(RenderUsage(), out);
-      return EXIT_SUCCESS;
-    }
-    options = ParseRenderArgs(args);
-  } catch (const std::exception& error) {
-    std::fprintf(err, "sketch-a-scratch render: %s\n%s", error.what(), RenderUsage());
-    return 2;
+    cli.Finish(options);
+  } catch (const RenderError& error) {
+    std::fprintf(
+        err, "sketch-a-scratch render: %s\n(sketch-a-scratch render --help lists the options)\n",
+        error.what());
+    return kExitUsage;
   }
   try {
     const RenderSummary summary = Render(options);
@@ -355,10 +343,10 @@ int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::
       std::fprintf(err, "sketch-a-scratch render: warning: %s\n", warning.c_str());
     }
     std::fprintf(out, "%s\n", FormatSummary(options, summary).c_str());
-    return EXIT_SUCCESS;
+    return kExitOk;
   } catch (const std::exception& error) {
     std::fprintf(err, "sketch-a-scratch render: error: %s\n", error.what());
-    return EXIT_FAILURE;
+    return kExitRuntimeError;
   }
 }
 

@@ -82,11 +82,11 @@ RenderSummary RenderToMemory(const RenderOptions& options, std::vector<float>& a
 // "out.wav: 4.10 s, wood on grating, slow stroke | ch1 peak -6.0 dBFS rms -21.3 dBFS | ch2 ..."
 std::string FormatSummary(const RenderOptions& options, const RenderSummary& summary);
 
-// Parses `args` (everything after "render"). Throws RenderError with a usage message on bad args.
+// Parses `args` (everything after "render") with the shared parser (command_line.h). Throws
+// RenderError naming the option on bad args.
 RenderOptions ParseRenderArgs(const std::vector<std::string>& args);
 // The whole subcommand: parse, render, print the summary to `out`, errors to `err`. Returns the
 // process exit code (0 ok, 1 render failed, 2 bad command line). Never throws.
 int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::FILE* err);
-const char* RenderUsage();
 
 }  // namespace sas::kiosk

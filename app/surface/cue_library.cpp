@@ -7,6 +7,15 @@
 #include "surface/audio_file.h"
 
 namespace sas::surface {
+namespace {
+constexpr double kMaxCueClippedFraction = 0.001;
+}  // namespace
+
+std::string CueLevelProblem(const AudioClip& clip) {
+  if (clip.clipped_fraction <= kMaxCueClippedFraction) return {};
+  return std::to_string(clip.clipped_fraction * 100.0) +
+         " % of the samples at or beyond full scale (a damaged file)";
+}
 
 const std::vector<std::string>& MessageCueNames() {
   static const std::vector<std::string> names = {"record_countdown", "too_quiet", "too_loud",
@@ -43,6 +52,10 @@ CueLibrary CueLibrary::Load(const std::string& dir, const std::vector<std::strin
       AudioClip clip = ReadAudioFile(path.string(), limits);
       if (clip.silent) {
         library.problems_.push_back(path.string() + ": silent");
+        continue;
+      }
+      if (const std::string problem = CueLevelProblem(clip); !problem.empty()) {
+        library.problems_.push_back(path.string() + ": " + problem);
         continue;
       }
       library.cues_[file.substr(0, file.size() - 4)] = std::move(clip.samples);

@@ -13,7 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "surface/audio_file.h"
+
 namespace sas::surface {
+
+// cue_maker writes every cue with its peak at or below -1 dBFS. A float WAV can hold any value
+// (1e30 decodes fine and the reader clips it to full scale): a cue with more than a stray sample
+// at full scale is a damaged file and would play as a full-scale square wave. Returns why `clip`
+// is no cue, or "" when it may be one.
+std::string CueLevelProblem(const AudioClip& clip);
 
 // The message cues' names (file name without .wav), in a fixed order.
 const std::vector<std::string>& MessageCueNames();

@@ -1,8 +1,8 @@
 // The fault matrix: every way into the program, each row a bad input (or a fault) with the outcome
 // we promise and the check that nothing was lost. Rows are grouped by input surface, one table per
 // surface; each table is one test case that runs every row and names the row in any failure.
-// Rows that need a real process (signals, device loss, the command line's exit codes) live in
-// tests/e2e/kiosk_faults_e2e.sh and are counted there.
+// The data files and the commands' arguments are in test_fault_matrix_inputs.cpp. Rows that need
+// a real process (signals, device loss) live in tests/e2e/kiosk_faults_e2e.sh.
 #include <sys/stat.h>
 
 #include <catch2/catch.hpp>
@@ -132,8 +132,9 @@ std::string TexturePath(const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("fault matrix: counters file - no damage lowers a count; the damaged file is kept aside",
-          "[kiosk][faults]") {
+TEST_CASE(
+    "fault matrix: counters file - no damage lowers a count and the damaged file is kept aside",
+    "[kiosk][faults]") {
   auto& log = sas::platform::DefaultLogger();
   log.SetEchoToStderr(false);
   int rows = 0;

@@ -336,23 +336,48 @@ TEST_CASE("a bad material file found first in --materials-dir is reported with f
   CHECK_THAT(result.err, Catch::Contains(materials.file("wood.toml") + ":3: modes[0].gian"));
 }
 
-TEST_CASE("bad command lines exit with code 2 and print the usage", "[render]") {
-  const std::vector<std::vector<std::string>> bad = {
-      {"--material", "wood"},                  // no --out
-      {"--out", "x.wav", "--fs", "12.5k"},     // not a number
-      {"--out", "x.wav", "--fs", "1000"},      // out of range
-      {"--out", "x.wav", "--tail-s", "nan"},   // NaN
-      {"--out", "x.wav", "--style", "smear"},  // unknown style
-      {"--out", "x.wav", "--colour", "red"},   // unknown option
-      {"--out"},                               // missing value
+TEST_CASE("bad command lines exit with code 2 naming the option and pointing to --help",
+          "[render]") {
+  const struct {
+    std::vector<std::string> args;
+    const char* named;  // what the one-line message must name
+  } bad[] = {
+      {{"--material", "wood"}, "--out"},                          // no --out
+      {{"--out", "x.wav", "--fs", "12.5k"}, "--fs"},              // not a number
+      {{"--out", "x.wav", "--fs", "1000"}, "--fs"},               // out of range
+      {{"--out", "x.wav", "--tail-s", "nan"}, "--tail-s"},        // NaN
+      {{"--out", "x.wav", "--style", "smear"}, "--style"},        // unknown style
+      {{"--out", "x.wav", "--colour", "red"}, "--colour"},        // unknown option
+      {{"--out"}, "--out"},                                       // missing value
+      {{"--out", "x.wav", "--sweep-mps", "0.1"}, "--sweep-mps"},  // not a passive sweep
   };
-  for (const auto& args : bad) {
-    const auto result = Run(args);
+  for (const auto& row : bad) {
+    const auto result = Run(row.args);
+    INFO(result.err);
     CHECK(result.code == 2);
-    CHECK_THAT(result.err, Catch::Contains("usage: sketch-a-scratch render"));
+    CHECK_THAT(result.err, Catch::Contains(row.named));
+    CHECK_THAT(result.err, Catch::Contains("render --help"));
   }
+  CHECK_THAT(Run({"--out"}).err, Catch::Contains("missing"));
   CHECK_THROWS_AS(ParseRenderArgs({"--out", "x.wav", "--format", "mp3"}), RenderError);
   CHECK(ParseRenderArgs({"--out=x.wav", "--fs=96000"}).sample_rate_hz == 96000);
+}
+
+TEST_CASE("render --help prints the options, kiosk texture names among them, and exits 0",
+          "[render]") {
+  const auto result = Run({"--help"});
+  CHECK(result.code == 0);
+  CHECK_THAT(result.out, Catch::Contains("--profile"));
+  CHECK_THAT(result.out, Catch::Contains("broken_glass"));
+}
+
+TEST_CASE("render takes a kiosk texture by the name its help offers", "[render]") {
+  sas::test::TempDir dir;
+  const auto result = Run({"--profile", "broken_glass", "--gesture", "tap", "--tail-s", "0.1",
+                           "--out", dir.file("glass.wav")});
+  INFO(result.err);
+  CHECK(result.code == 0);
+  CHECK_THAT(result.out, Catch::Contains("glass on broken_glass"));
 }
 
 TEST_CASE("a missing gesture file, picture or output directory is an error, exit code 1",
