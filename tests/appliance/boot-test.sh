@@ -271,7 +271,7 @@ fi
 shot_check() {  # shot_check <check> <details> <command...>
   local name=$1 details=$2 output
   shift 2
-  if output=$("$@" 2>&1); then row PASS "$name" "$details; $(echo "$output" | tail -1)"
+  if output=$("$@" 2>&1); then row PASS "$name" "$details; $(echo "$output" | paste -sd";" -)"
   else row FAIL "$name" "$details; $(echo "$output" | tr '\n' ' ')"; fi
 }
 read -r width height < <(identify -format '%w %h\n' "$out/dent.png" 2>/dev/null || echo "0 0")
