@@ -74,7 +74,7 @@ case "$mode" in
   test)
     (cd "$repo/build" && ctest --output-on-failure -j "$jobs")
     # The installed product: the .deb booted under systemd in a VM (tests/appliance/boot-test.sh).
-    bash "$repo/tests/appliance/boot-test.sh" --build-dir "$repo/build"
+    as_root bash "$repo/tests/appliance/boot-test.sh" --build-dir "$repo/build"
     # A packager's first command builds the product with CMake's Release flags under -Werror.
     build build-release -DCMAKE_BUILD_TYPE=Release -DSAS_BUILD_TESTS=OFF -DSAS_BUILD_BENCH=OFF
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DSAS_SANITIZE=ON -DSAS_BUILD_BENCH=OFF

@@ -10,12 +10,13 @@
 # and the installer inside; this script takes the screenshots it asks for (QEMU monitor
 # screendump) and checks the screen, the loopback capture, the journal and the guest's disk.
 #
-#   sudo bash tests/appliance/boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR]
+#   sudo bash tests/appliance/boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs]
 #
 # Exits 0 only if every check passes; writes DIR/report.md (each check, pass/fail, the figures)
 # and the screenshots (default DIR: <build dir>/appliance-report). The base image is cached in
 # --cache (default /var/cache/sketch-a-scratch-boot-test, or $SAS_BOOT_TEST_CACHE) and rebuilt
-# when absent or when its package list changes; apt's downloads are cached there too.
+# when absent or when its package list changes; apt's downloads are cached there too. --docs also
+# writes the report to docs/appliance-boot-test.md.
 # Needs root (chroot, image ownership), the Debian archive, qemu-system-x86, mmdebstrap,
 # e2fsprogs and ImageMagick (install/packages.txt, test group).
 set -uo pipefail
@@ -24,12 +25,14 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build_dir="$repo/build"
 out=""
 cache="${SAS_BOOT_TEST_CACHE:-/var/cache/sketch-a-scratch-boot-test}"
+docs=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) build_dir="$2"; shift ;;
     --out) out="$2"; shift ;;
     --cache) cache="$2"; shift ;;
-    *) echo "usage: boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR]" >&2; exit 2 ;;
+    --docs) docs=1 ;;
+    *) echo "usage: boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs]" >&2; exit 2 ;;
   esac
   shift
 done
@@ -47,8 +50,10 @@ work="$(mktemp -d /var/tmp/sas-boot-test.XXXXXX)"
 root="$work/root"
 share="$work/share"
 qemu_pid=""
+monitor_pid=""
 cleanup() {
   [ -n "$qemu_pid" ] && kill "$qemu_pid" 2>/dev/null
+  [ -n "$monitor_pid" ] && kill "$monitor_pid" 2>/dev/null
   umount "$root/var/cache/apt/archives" 2>/dev/null
   umount "$root/proc" 2>/dev/null
   if [ -n "${SAS_BOOT_TEST_KEEP:-}" ]; then echo "boot-test: kept $work"; else rm -rf "$work"; fi
@@ -198,8 +203,10 @@ qemu-system-x86_64 -accel "$accel" -m 2048 -smp 2 -no-reboot -nic none \
   -virtfs "local,path=$share,mount_tag=sas,security_model=none" >"$out/qemu.log" 2>&1 &
 qemu_pid=$!
 boot_t0=$(date +%s.%N)
-cat "$work/mon.out" >"$work/monitor.log" &
-exec 5>"$work/mon.in"
+cat "$work/mon.out" >"$work/monitor.log" 2>/dev/null &
+monitor_pid=$!
+# Read-write: opening a FIFO so never blocks, even if QEMU died before opening its end.
+exec 5<>"$work/mon.in"
 shots="$share/out/shots"
 mkdir -p "$shots"
 screendump() {  # screendump FILE.ppm: waits until QEMU has written it
@@ -354,4 +361,9 @@ total_s=$(elapsed)
   echo "Screenshots: $(cd "$out" && ls ./*.png 2>/dev/null | tr '\n' ' ')"
 } >"$report"
 cat "$report"
+if [ -n "$docs" ]; then
+  mkdir -p "$repo/docs"
+  { echo "<!-- written by tests/appliance/boot-test.sh --docs on $(date -u +%Y-%m-%d) -->"; cat "$report"; } \
+    >"$repo/docs/appliance-boot-test.md"
+fi
 [ "$failures" -eq 0 ]
