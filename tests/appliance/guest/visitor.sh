@@ -111,6 +111,8 @@ mark stroke_down
 dev down 0.35 0.50 0.5 10
 dev drag 0.60 0.55 1.2 0.5 10
 mark stroke_last_move
+# The pen rests where the drag ended while the emulated machine's slow frames catch up with it.
+sleep 2
 shot dent
 mark stroke_lift
 dev up
