@@ -17,6 +17,7 @@
 #include "kiosk/counters_file.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
+#include "one_stroke.h"
 #include "platform/log/log.h"
 #include "support/temp_dir.h"
 
@@ -158,18 +159,7 @@ TEST_CASE(
     options.counters_path = path;
     {
       KioskEngine engine(options);
-      engine.SetAudioRunning(true);
-      sas::kiosk::PenInput pen;
-      pen.time_ns = 1'000'000'000;
-      pen.x_px = 400;
-      pen.y_px = 300;
-      pen.pressure = 0.8;
-      pen.tip_down = true;
-      engine.OnPen(pen);
-      pen.time_ns += 50'000'000;
-      pen.tip_down = false;
-      pen.pressure = 0.0;
-      engine.OnPen(pen);
+      sas::test::OneStroke(engine);
       engine.SaveCounters(&error);
     }
     int warnings = 0;

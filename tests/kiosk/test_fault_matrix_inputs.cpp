@@ -29,6 +29,7 @@
 #include "kiosk/command_line.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/gesture.h"
+#include "one_stroke.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/material_file.h"
@@ -424,21 +425,6 @@ class FileSizeLimit {
   void (*old_handler_)(int) = SIG_DFL;
 };
 
-void OneStroke(sas::kiosk::KioskEngine& engine) {
-  engine.SetAudioRunning(true);
-  sas::kiosk::PenInput pen;
-  pen.time_ns = 1'000'000'000;
-  pen.x_px = 400;
-  pen.y_px = 300;
-  pen.pressure = 0.8;
-  pen.tip_down = true;
-  engine.OnPen(pen);
-  pen.time_ns += 50'000'000;
-  pen.tip_down = false;
-  pen.pressure = 0.0;
-  engine.OnPen(pen);
-}
-
 }  // namespace
 
 TEST_CASE("fault matrix: state folder - a full disk or a broken folder loses no saved history",
@@ -492,7 +478,7 @@ TEST_CASE("fault matrix: state folder - a full disk or a broken folder loses no 
     {
       sas::kiosk::KioskEngine engine(options);
       const auto files_at_start = listing(state);  // counters.toml and its backup
-      OneStroke(engine);
+      sas::test::OneStroke(engine);
       std::optional<FileSizeLimit> limit;
       if (row.file_size_limit > 0) limit.emplace(row.file_size_limit);
       const bool saved_ok = engine.SaveCounters(&error);
