@@ -17,7 +17,7 @@
 #include "kiosk/counters_file.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
-#include "one_stroke.h"
+#include "fault_matrix_support.h"
 #include "platform/log/log.h"
 #include "support/temp_dir.h"
 
@@ -28,12 +28,7 @@ using sas::kiosk::UsageCounters;
 
 namespace {
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using sas::test::ReadAll;
 
 void WriteAll(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

@@ -29,7 +29,7 @@
 #include "kiosk/command_line.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/gesture.h"
-#include "one_stroke.h"
+#include "fault_matrix_support.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/material_file.h"
@@ -44,12 +44,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using sas::test::ReadAll;
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
