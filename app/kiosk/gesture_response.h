@@ -1,0 +1,111 @@
+#pragma once
+// How the sound and the vibration answer the hand: one straight stroke on a surface, played with a
+// chosen style, speed and pressure through the same synth::Scene and the same pen -> probe mapping
+// as the kiosk (kiosk_engine.cpp: force = pressure · 2 N, penetration = pressure · relief, width
+// from tilt), measured on the sustained stroke. For blind visitors the sound is the texture, so the
+// synth must make faster strokes louder and brighter, harder strokes louder, and the three styles
+// audibly different; GestureResponseGrid plays the grid that checks it (tests and the
+// gesture_response tool, which writes docs/gesture-response.md).
+//
+// A stroke: the pen rests on the surface (landing at 5 mm/s, so no landing click), waits
+// kRestS for the contact to settle, then moves kPathMm along a straight line at constant speed
+// and is lifted. The same path at every speed: only the hand changes. The measured span is the
+// motion itself; its level is the RMS of channel 1 (sound) and channel 2 (haptic, 40–800 Hz) at
+// gain 0 dB, in dB re full scale (1 m/s pickup velocity); its spectrum is a Hann-windowed DFT.
+// Styles as visitors make them: scrape = upright pen (a 0.3 mm point), rub = tilted 40° (a 4 mm
+// wide probe, kiosk/gesture.h), roll = upright with the roll style (a ball following the relief).
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surface/height_field.h"
+#include "synth/material_params.h"
+#include "synth/probe_command.h"
+
+namespace sas::kiosk {
+
+// A surface as the kiosk plays it: its height field and material.
+struct ResponseSurface {
+  std::string name;  // "wooden board", ..., "voice"
+  std::shared_ptr<const surface::HeightField> field;
+  synth::MaterialParams material;
+};
+
+// The four kiosk textures (textures_dir/<name>/texture.toml, their pictures turned into height
+// fields as the kiosk does) and the voice surface (the synthetic voice through the kiosk's voice
+// path, with the kiosk's voice material). Materials are looked up as `render` does
+// (MaterialSearchDirs("")). Throws on missing files.
+std::vector<ResponseSurface> LoadResponseSurfaces(const std::string& textures_dir);
+
+struct HandStroke {
+  synth::ProbeStyle style = synth::ProbeStyle::kScrape;
+  double speed_mm_s = 100.0;
+  double pressure = 0.5;  // 0..1
+};
+
+// Third-octave bands 100 Hz .. 10 kHz (ISO 266 centres).
+inline constexpr int kThirdOctaveBands = 21;
+
+struct StrokeResponse {
+  double sound_db = -300.0;   // RMS of channel 1 over the motion
+  double haptic_db = -300.0;  // RMS of channel 2 over the motion
+  double centroid_hz = 0.0;   // power-weighted mean frequency of channel 1, 20 Hz .. 20 kHz
+  // Channel 1's band levels (dB) relative to its total level: the spectrum's shape alone.
+  std::array<double, kThirdOctaveBands> band_db{};
+};
+
+inline constexpr double kRestS = 0.15;
+inline constexpr double kPathMm = 20.0;
+
+// Plays `stroke` `places` times (paths spread over the surface's middle, each in its own
+// direction) and returns the mean of their levels (dB), centroids and band shapes.
+StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& stroke,
+                             int places = 3, double fs_hz = 48000.0);
+
+// Mean absolute difference (dB) of two band shapes.
+double SpectralDistanceDb(const StrokeResponse& a, const StrokeResponse& b);
+
+// The grid of the gesture-response check and figure.
+inline constexpr std::array<synth::ProbeStyle, 3> kResponseStyles = {
+    synth::ProbeStyle::kScrape, synth::ProbeStyle::kRub, synth::ProbeStyle::kRoll};
+inline constexpr std::array<double, 3> kResponseSpeedsMmS = {30.0, 100.0, 300.0};
+inline constexpr std::array<double, 2> kResponsePressures = {0.2, 0.8};
+
+struct ResponseCell {
+  HandStroke stroke;
+  StrokeResponse response;
+};
+
+// Every style × speed × pressure of the grid on one surface, in that nesting order.
+std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface, int places = 3);
+
+// One failed relation of the grid: `key` names it ("wooden board/speed-centroid/roll/p0.8"),
+// `text` says it with figures ("wooden board, roll, p 0.8: speed 30 -> 300 mm/s moves the centroid
+// 568 -> 653 Hz (x1.15), needs x1.30").
+struct ResponseLimits {
+  double speed_sound_db = 6.0;
+  double speed_centroid_ratio = 1.3;
+  double speed_haptic_db = 0.0;  // "rises": more than this
+  double pressure_sound_db = 3.0;
+  double style_distance_db = 3.0;
+};
+struct ResponseFailure {
+  std::string key;
+  std::string text;
+};
+// Every relation of the grid on one surface: speed 30 -> 300 mm/s raises the sound level by
+// speed_sound_db, the centroid by speed_centroid_ratio and the vibration (per style and pressure);
+// pressure 0.2 -> 0.8 raises the sound by pressure_sound_db (per style and speed); every two
+// styles' band shapes differ by style_distance_db (per speed and pressure). Returns the ones that
+// fail.
+std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
+                                               const std::vector<ResponseCell>& grid,
+                                               const ResponseLimits& limits = {});
+// How many relations CheckResponseGrid checks on one surface.
+int ResponseRelationCount();
+
+const char* StyleName(synth::ProbeStyle style);
+
+}  // namespace sas::kiosk

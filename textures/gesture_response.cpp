@@ -1,0 +1,196 @@
+// gesture_response: how each kiosk texture and the voice surface answer the hand
+// (kiosk/gesture_response.h): level and spectral centroid against speed, pressure and style.
+//
+//   gesture_response --textures DIR [--docs DIR] [--places N]
+//
+// Prints the grid and the relations that fail; with --docs writes DIR/gesture-response.md (the
+// table, every relation checked and which fail) and DIR/gesture-response.png (the plot). Exit 0
+// when written (or printed), 1 on an error; failing relations are reported, not an error (the
+// test tests/kiosk/test_gesture_response.cpp holds the line).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "kiosk/gesture_response.h"
+
+namespace {
+
+using sas::kiosk::ResponseCell;
+using sas::kiosk::StyleName;
+
+const cv::Scalar kStyleColour[3] = {{40, 90, 220}, {60, 160, 40}, {200, 110, 30}};  // BGR
+constexpr int kPanelW = 440, kPanelH = 250, kLeft = 60, kRight = 14, kTop = 30, kBottom = 40;
+
+// One panel: y against speed (log axis), one line per style and pressure (firm solid, light thin).
+void Panel(cv::Mat& image, int x0, int y0, const std::string& title,
+           const std::vector<ResponseCell>& grid, bool centroid) {
+  const cv::Rect area(x0 + kLeft, y0 + kTop, kPanelW - kLeft - kRight, kPanelH - kTop - kBottom);
+  double lo = 1e300, hi = -1e300;
+  const auto value = [&](const ResponseCell& c) {
+    return centroid ? std::log10(std::max(c.response.centroid_hz, 10.0)) : c.response.sound_db;
+  };
+  for (const auto& c : grid) {
+    lo = std::min(lo, value(c));
+    hi = std::max(hi, value(c));
+  }
+  if (centroid) {
+    lo = std::floor(lo * 5.0) / 5.0;
+    hi = std::ceil(hi * 5.0) / 5.0;
+  } else {
+    lo = std::floor(lo / 10.0) * 10.0;
+    hi = std::ceil(hi / 10.0) * 10.0;
+  }
+  if (hi <= lo) hi = lo + 1.0;
+  const double s_lo = std::log10(25.0), s_hi = std::log10(360.0);
+  const auto px = [&](double speed) {
+    return area.x + static_cast<int>((std::log10(speed) - s_lo) / (s_hi - s_lo) * area.width);
+  };
+  const auto py = [&](double v) {
+    return area.y + area.height - static_cast<int>((v - lo) / (hi - lo) * area.height);
+  };
+  cv::rectangle(image, area, {0, 0, 0}, 1);
+  cv::putText(image, title, {x0 + kLeft, y0 + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
+              cv::LINE_AA);
+  for (const double speed : sas::kiosk::kResponseSpeedsMmS) {
+    const int x = px(speed);
+    cv::line(image, {x, area.y + area.height}, {x, area.y + area.height + 4}, {0, 0, 0});
+    cv::putText(image, std::to_string(static_cast<int>(speed)), {x - 10, area.y + area.height + 18},
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 0, 0}, 1, cv::LINE_AA);
+  }
+  cv::putText(image, "speed, mm/s", {area.x + area.width / 2 - 40, area.y + area.height + 34},
+              cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 0, 0}, 1, cv::LINE_AA);
+  const int ticks = 4;
+  for (int t = 0; t <= ticks; ++t) {
+    const double v = lo + (hi - lo) * t / ticks;
+    char label[32];
+    if (centroid) {
+      std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, v));
+    } else {
+      std::snprintf(label, sizeof label, "%.0f", v);
+    }
+    cv::putText(image, label, {x0 + 8, py(v) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {0, 0, 0}, 1,
+                cv::LINE_AA);
+    cv::line(image, {area.x, py(v)}, {area.x + area.width, py(v)}, {225, 225, 225});
+  }
+  for (std::size_t s = 0; s < sas::kiosk::kResponseStyles.size(); ++s) {
+    for (const double pressure : sas::kiosk::kResponsePressures) {
+      std::vector<cv::Point> points;
+      for (const auto& c : grid) {
+        if (c.stroke.style == sas::kiosk::kResponseStyles[s] && c.stroke.pressure == pressure) {
+          points.emplace_back(px(c.stroke.speed_mm_s), py(value(c)));
+        }
+      }
+      const int thickness = pressure > 0.5 ? 2 : 1;
+      cv::polylines(image, points, false, kStyleColour[s], thickness, cv::LINE_AA);
+      for (const auto& p : points) cv::circle(image, p, 3, kStyleColour[s], -1, cv::LINE_AA);
+    }
+  }
+}
+
+void WritePlot(const std::string& path, const std::vector<std::string>& names,
+               const std::vector<std::vector<ResponseCell>>& grids) {
+  const int legend = 40;
+  cv::Mat image(legend + kPanelH * static_cast<int>(names.size()), 2 * kPanelW, CV_8UC3,
+                cv::Scalar(255, 255, 255));
+  int x = 10;
+  for (std::size_t s = 0; s < sas::kiosk::kResponseStyles.size(); ++s) {
+    cv::line(image, {x, 20}, {x + 30, 20}, kStyleColour[s], 2, cv::LINE_AA);
+    cv::putText(image, StyleName(sas::kiosk::kResponseStyles[s]), {x + 36, 25},
+                cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1, cv::LINE_AA);
+    x += 120;
+  }
+  cv::putText(image, "thick: pressure 0.8, thin: 0.2", {x + 20, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              {0, 0, 0}, 1, cv::LINE_AA);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const int y0 = legend + kPanelH * static_cast<int>(i);
+    Panel(image, 0, y0, names[i] + ": sound level, dB", grids[i], false);
+    Panel(image, kPanelW, y0, names[i] + ": spectral centroid, Hz", grids[i], true);
+  }
+  if (!cv::imwrite(path, image)) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Level and spectral centroid of each kiosk texture and the voice surface against "
+      "speed, pressure and style.",
+      "gesture_response"};
+  std::string textures = "textures";
+  std::string docs;
+  int places = 3;
+  app.add_option("--textures", textures, "the kiosk textures' folder (default textures)");
+  app.add_option("--docs", docs, "write gesture-response.md and gesture-response.png here");
+  app.add_option("--places", places, "places per stroke (default 3)")->check(CLI::Range(1, 50));
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const auto surfaces = sas::kiosk::LoadResponseSurfaces(textures);
+    std::vector<std::string> names;
+    std::vector<std::vector<ResponseCell>> grids;
+    std::vector<sas::kiosk::ResponseFailure> failures;
+    for (const auto& s : surfaces) {
+      names.push_back(s.name);
+      grids.push_back(sas::kiosk::MeasureResponseGrid(s, places));
+      for (auto& f : sas::kiosk::CheckResponseGrid(s.name, grids.back())) {
+        std::printf("FAIL [%s] %s\n", f.key.c_str(), f.text.c_str());
+        failures.push_back(std::move(f));
+      }
+    }
+    const int relations = sas::kiosk::ResponseRelationCount() * static_cast<int>(surfaces.size());
+    std::printf("%d of %d relations hold\n", relations - static_cast<int>(failures.size()),
+                relations);
+    if (docs.empty()) return 0;
+    std::filesystem::create_directories(docs);
+    WritePlot((std::filesystem::path(docs) / "gesture-response.png").string(), names, grids);
+    std::ofstream md(std::filesystem::path(docs) / "gesture-response.md");
+    md << "# How the sound answers the hand\n\n"
+          "Written by `gesture_response --docs docs` (textures/gesture_response.cpp); do not "
+          "edit.\n"
+          "Each texture and the voice surface, stroked along the same straight "
+       << sas::kiosk::kPathMm
+       << " mm path at 3 speeds, 2 pen pressures and in 3 styles (scrape: upright pen; rub: pen "
+          "tilted 40°, a 4 mm probe; roll: a ball following the relief), through the kiosk's "
+          "synth at gain 0 dB, "
+       << places
+       << " places each (kiosk/gesture_response.h). Sound and vibration are RMS levels of the "
+          "moving stroke in dB re full scale; the centroid is channel 1's power-weighted mean "
+          "frequency.\n\n![level and centroid against speed](gesture-response.png)\n\n";
+    md << "## Relations\n\nWanted on every surface: speed 30 → 300 mm/s raises the sound by ≥ 6 "
+          "dB, "
+          "the centroid by ≥ 1.3× and the vibration; pressure 0.2 → 0.8 raises the sound by ≥ 3 "
+          "dB; any two styles' level-normalised third-octave spectra (100 Hz–10 kHz) differ by ≥ 3 "
+          "dB on average. **"
+       << relations - static_cast<int>(failures.size()) << " of " << relations
+       << " hold.** The ones that do not:\n\n";
+    for (const auto& f : failures) md << "- " << f.text << "\n";
+    if (failures.empty()) md << "- none\n";
+    md << "\n## The grid\n\n";
+    char line[256];
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      md << "### " << names[i]
+         << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB "
+            "| centroid, Hz |\n|---|---|---|---|---|---|\n";
+      for (const auto& c : grids[i]) {
+        std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f |\n",
+                      StyleName(c.stroke.style), c.stroke.speed_mm_s, c.stroke.pressure,
+                      c.response.sound_db, c.response.haptic_db, c.response.centroid_hz);
+        md << line;
+      }
+      md << "\n";
+    }
+    if (!md) throw std::runtime_error("cannot write " + docs + "/gesture-response.md");
+    std::printf("wrote %s/gesture-response.md and gesture-response.png\n", docs.c_str());
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "gesture_response: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}
