@@ -24,6 +24,7 @@
 #include "kiosk/kiosk_signals.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
+#include "platform/audio/background_audio_output.h"
 #include "platform/common/clock.h"
 #include "platform/device_status.h"
 #include "platform/input/switch_factory.h"
@@ -303,8 +304,11 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   output_config.reopen_backoff_initial_s = config.reopen_backoff_initial_s;
   output_config.reopen_backoff_max_s = config.reopen_backoff_max_s;
   output_config.stall_timeout_s = config.stall_timeout_s;
-  auto output = platform::MakePortAudioOutput(*engine, output_config, board);
-  output->Start();  // absent: runs silent, Poll retries with back-off
+  // Supervised on its own thread: a reopen can sit in ALSA for seconds, and the screen, the pen
+  // and the idle reset must not wait for it.
+  auto output = std::make_unique<platform::BackgroundAudioOutput>(
+      platform::MakePortAudioOutput(*engine, output_config, board));
+  output->Start();  // absent: runs silent, the supervision thread retries with back-off
   engine->SetAudioRunning(output->Running());
 
   platform::SwitchesConfig switches_config;
