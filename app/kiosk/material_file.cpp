@@ -149,6 +149,16 @@ const std::vector<KeySpec<synth::FrictionParams>>& FrictionKeys() {
   return keys;
 }
 
+// Micro-roughness (synth::RoughnessParams): from polished (0.01 µm) to coarse soil (1 mm).
+const std::vector<KeySpec<synth::RoughnessParams>>& RoughnessKeys() {
+  using R = synth::RoughnessParams;
+  static const std::vector<KeySpec<R>> keys = {
+      {"rms_height_m", Real(&R::rms_m, 0.0, 1e-3)},
+      {"correlation_length_m", Real(&R::length_m, 1e-7, 1e-2)},
+  };
+  return keys;
+}
+
 const std::vector<KeySpec<synth::ModeParams>>& ModeKeys() {
   using M = synth::ModeParams;
   static const std::vector<KeySpec<M>> keys = {
@@ -262,10 +272,11 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
   }
   for (const auto& [key, node] : root) {
     const std::string_view k = key.str();
-    if (k != "description" && k != "probe" && k != "impact" && k != "friction" && k != "modes") {
+    if (k != "description" && k != "probe" && k != "impact" && k != "friction" && k != "modes" &&
+        k != "roughness") {
       throw MaterialError(Where(source_name, LineOf(node), std::string(k)) +
                           "unknown key (expected description, [probe], [impact], [friction], "
-                          "modes)");
+                          "[roughness], modes)");
     }
   }
 
@@ -284,6 +295,12 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
   if (material.params.friction.dynamic_coefficient > material.params.friction.static_coefficient) {
     throw MaterialError(Where(source_name, LineOf(*friction.get("mu_d")), "friction.mu_d") +
                         "must not exceed friction.mu_s");
+  }
+  // Optional: a material without [roughness] is smooth below the picture's pixel.
+  if (root.get("roughness") != nullptr) {
+    ApplyTable(RequireTable(root, "roughness", source_name), "roughness", RoughnessKeys(),
+               material.params.roughness, source_name);
+    material.params.roughness.enabled = true;
   }
   return material;
 }

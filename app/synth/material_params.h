@@ -97,11 +97,30 @@ struct OutputParams {
   bool low_vibration = false;
 };
 
+// Micro-roughness: the surface detail below the picture's pixel (grain, fibres, asperities) that
+// a moving tip feels, as a random profile in the distance travelled, so that its spectrum in time
+// scales with the speed: a stroke twice as fast is an octave brighter (rolling and scraping noise;
+// Remington, JASA 81(6) 1987; Thompson, "Railway Noise and Vibration", 2009, ch. 5). The profile is
+// an Ornstein–Uhlenbeck process in distance (RMS height `rms_m`, correlation length `length_m`:
+// a k^-2 spectrum above 1/length_m, self-affine like measured surfaces), seen through the contact:
+// the probe cannot follow wavelengths shorter than its contact patch ("contact filter", two
+// first-order low-passes in distance over the patch length: the nib's Hertz contact for scrape,
+// the probe width for rub, the chord a ball of radius r spans over the asperities for roll). The
+// friction's noise term σ3 w is a process of the same kind (its own draw), so grit also brightens
+// with speed.
+// Not enabled: w white, as in Avanzini et al. 2005, and no roughness under the probe.
+struct RoughnessParams {
+  bool enabled = false;
+  double rms_m = 0.0;
+  double length_m = 1e-4;
+};
+
 struct MaterialParams {
   ResonatorParams resonator;
   ImpactParams impact;
   FrictionParams friction;
   ProbeParams probe;
+  RoughnessParams roughness;
 };
 
 }  // namespace sas::synth

@@ -99,6 +99,12 @@ struct Scene::Impl {
   bool burst_touched = false;
   int burst_samples = 0;
   std::uint64_t noise_state = kNoiseSeed;
+  // Micro-roughness (RoughnessParams): the spatial process, its contact filter and the friction
+  // noise's spatial process, advanced by the distance travelled each sample. The coefficients
+  // depend on the speed and the contact, so Apply() sets them once per command.
+  double rough_keep = 1.0, rough_in = 0.0, contact_step = 0.0;
+  double noise_keep = 0.0, noise_in = 1.0;
+  double rough_raw = 0.0, rough_c1 = 0.0, rough_felt = 0.0, noise_w = 0.0;
 
   double Felt(double x, double y) const {
     return reader.Felt(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
@@ -129,6 +135,11 @@ struct Scene::Impl {
     burst_flight = burst_touched = false;
     burst_samples = 0;
     noise_state = kNoiseSeed;
+    rough_keep = 1.0;
+    rough_in = contact_step = 0.0;
+    noise_keep = 0.0;
+    noise_in = 1.0;
+    rough_raw = rough_c1 = rough_felt = noise_w = 0.0;
     idle = false;
     frame_count = 0;
     friction_skipped = false;
@@ -192,9 +203,65 @@ struct Scene::Impl {
     std::fill(out, out + 2 * static_cast<std::ptrdiff_t>(count), 0.0f);
   }
 
+  // The length of surface the probe touches along the stroke (the contact filter's length, see
+  // RoughnessParams): scrape, the nib's Hertz contact diameter 2 sqrt(R x) under the push
+  // (x = (F/k)^(1/α), Johnson, "Contact Mechanics", §4.2); rub, the probe's width; roll, the chord
+  // 2 sqrt(2 r · 2σ) a ball of radius r spans over asperities 2σ high.
+  double ContactLength() const {
+    const RoughnessParams& r = material.roughness;
+    double length = r.length_m;
+    if (gesture.style == ProbeStyle::kRub) {
+      length = gesture.width_mm * 1e-3;
+    } else if (gesture.style == ProbeStyle::kRoll) {
+      const double radius = std::max(material.probe.ball_radius_m, 0.5e-3 * gesture.width_mm);
+      length = 2.0 * std::sqrt(4.0 * radius * r.rms_m);
+    } else if (config.impact.enabled && gesture.normal_force_n > 0.0) {
+      const double x =
+          std::pow(gesture.normal_force_n / config.impact.k, 1.0 / config.impact.alpha);
+      length = 2.0 * std::sqrt(material.probe.ball_radius_m * x);
+    }
+    return std::max(length, 1e-7);
+  }
+
+  // Coefficients of the spatial processes for the current gesture: an Ornstein–Uhlenbeck step over
+  // the distance ds = v / fs (keep = e^(-ds/ℓ), input sqrt(1 - keep²) for a stationary variance)
+  // and the contact filter's first-order step 1 - e^(-ds/L). Not moving: frozen.
+  void SetSpatialSteps() {
+    const RoughnessParams& r = material.roughness;
+    const double ds = gesture.tip_down ? gesture.velocity_mps / fs : 0.0;
+    if (!r.enabled || !(r.length_m > 0.0)) {
+      rough_keep = 1.0;
+      rough_in = contact_step = 0.0;
+      noise_keep = 0.0;  // white friction noise
+      noise_in = 1.0;
+      return;
+    }
+    if (!(ds > 0.0)) {
+      rough_keep = noise_keep = 1.0;
+      rough_in = noise_in = contact_step = 0.0;
+      return;
+    }
+    const double keep = std::exp(-ds / r.length_m);
+    const double in = std::sqrt(std::max(1.0 - keep * keep, 0.0));
+    rough_keep = noise_keep = keep;
+    rough_in = std::max(r.rms_m, 0.0) * in;
+    noise_in = in;
+    contact_step = 1.0 - std::exp(-ds / ContactLength());
+  }
+
+  // One sample of travel: the roughness the contact feels (m).
+  double RoughnessStep() {
+    if (contact_step > 0.0 && rough_in > 0.0) {
+      rough_raw = rough_keep * rough_raw + rough_in * 1.7320508075688772 * Uniform();
+      rough_c1 += contact_step * (rough_raw - rough_c1);
+      rough_felt += contact_step * (rough_c1 - rough_felt);
+    }
+    return rough_felt;
+  }
+
   void Release(double velocity_mps) {
     // The probe appears just touching the surface (x = 0) under the pen.
-    surface_m = Felt(x_m, y_m);
+    surface_m = Felt(x_m, y_m) + rough_felt;
     probe = ProbeDynamics{};
     probe.active = true;
     probe.height_m = surface_m + modes.ContactDisplacement();
@@ -246,6 +313,7 @@ struct Scene::Impl {
       }
       probe.velocity_mps -= std::min(c.burst_impulse_n_s / config.probe_mass_kg, kMaxSpeed);
     }
+    SetSpatialSteps();
     if (probe.active) idle = false;  // a touch or a burst wakes the idle scene
   }
 
@@ -254,7 +322,7 @@ struct Scene::Impl {
     y_m += step_y_m;
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
     if (probe.active) {
-      const double next = Felt(x_m, y_m);
+      const double next = Felt(x_m, y_m) + RoughnessStep();
       SampleDrive drive;
       drive.surface_begin_m = surface_m;
       drive.surface_end_m = next;
@@ -265,9 +333,10 @@ struct Scene::Impl {
           drive.slide_velocity_mps > 0.0) {
         const double fn = drive.friction_share *
                           (config.impact.enabled ? std::max(probe.normal_n, 0.0) : drive.push_n);
-        // Unit-variance uniform noise scaled by sqrt(|v| f_N) (Avanzini et al. 2005).
-        drive.noise_n = config.friction.sigma3 * 1.7320508075688772 * Uniform() *
-                        std::sqrt(drive.slide_velocity_mps * fn);
+        // Unit-variance noise scaled by sqrt(|v| f_N) (Avanzini et al. 2005): white on a smooth
+        // material, the spatial process of its roughness on a rough one.
+        noise_w = noise_keep * noise_w + noise_in * (1.7320508075688772 * Uniform());
+        drive.noise_n = config.friction.sigma3 * noise_w * std::sqrt(drive.slide_velocity_mps * fn);
       }
       friction_skipped = skips.relaxed_friction && config.friction.enabled &&
                          drive.friction_share > 0.0 && FrictionIdle(drive);

@@ -316,3 +316,27 @@ TEST_CASE(
     }
   }
 }
+
+TEST_CASE("the optional [roughness] table reaches the synth and is checked like the others",
+          "[kiosk]") {
+  // Without the table: smooth (white friction noise, nothing added under the probe).
+  CHECK_FALSE(Parse(kValid).params.roughness.enabled);
+  const std::string rough =
+      std::string(kValid) + "[roughness]\nrms_height_m = 2e-6\ncorrelation_length_m = 4e-5\n";
+  const auto& r = Parse(rough).params.roughness;
+  CHECK(r.enabled);
+  CHECK(r.rms_m == 2e-6);
+  CHECK(r.length_m == 4e-5);
+  // Line 26 is [roughness], 27 rms_height_m, 28 correlation_length_m.
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "[roughness]\nrms_height_m = 0.01\n"
+                                                "correlation_length_m = 4e-5\n"),
+                    Catch::Contains("m.toml:27: roughness.rms_height_m"));
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "[roughness]\nrms_height_m = 0\n"),
+                    Catch::Contains("m.toml:26: roughness.correlation_length_m: missing key"));
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "[roughness]\nrms_height_m = 0\n"
+                                                "correlation_length_m = 0\n"),
+                    Catch::Contains("m.toml:28: roughness.correlation_length_m"));
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "[roughness]\nrms_height_m = 0\n"
+                                                "correlation_length_m = 4e-5\ngrit = 1\n"),
+                    Catch::Contains("m.toml:29: roughness.grit: unknown key"));
+}
