@@ -163,6 +163,7 @@ const std::vector<KeySpec>& Schema() {
       {"pen", "seat", Text(&KioskConfig::pen_seat)},
       {"gains", "sound_gain_db", Real(&KioskConfig::sound_gain_db, -60.0, 40.0)},
       {"gains", "haptic_gain_db", Real(&KioskConfig::haptic_gain_db, -60.0, 40.0)},
+      {"gains", "sound_ceiling_db", Real(&KioskConfig::sound_ceiling_db, -40.0, 0.0)},
       {"gains", "haptic_ceiling_db", Real(&KioskConfig::haptic_ceiling_db, -40.0, 0.0)},
       {"gains", "low_vibration_db", Real(&KioskConfig::low_vibration_db, 0.0, 40.0)},
       {"gains", "ambient_adaptive", Flag(&KioskConfig::ambient_adaptive)},

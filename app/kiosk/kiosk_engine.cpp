@@ -109,6 +109,11 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
       block_commands_(512),
       scratch_a_(static_cast<std::size_t>(std::max(1, options_.max_block_frames)) * 2),
       scratch_b_(scratch_a_.size()) {
+  speaker_ceiling_ = std::pow(10.0, options_.config.sound_ceiling_db / 20.0);
+  transducer_ceiling_ = std::pow(10.0, options_.config.haptic_ceiling_db / 20.0);
+  low_vibration_factor_ = std::pow(10.0, -options_.config.low_vibration_db / 20.0);
+  safety_.Prepare(options_.config.sample_rate_hz);
+  safety_.SetCeilings(speaker_ceiling_, transducer_ceiling_);
   if (options_.texture_paths.empty()) options_.texture_paths = FindTextureFiles();
   const auto dirs = MaterialSearchDirs(options_.materials_dir);
   surface::TextureLoadOptions load;
@@ -711,6 +716,9 @@ void KioskEngine::SetLowVibration(bool on) {
   // scenes prepared later get it through their output parameters.
   low_vibration_ = on;
   for (auto& slot : slots_) slot.scene.SetLowVibration(on);
+  // The transducer's ceiling comes down too, so nothing mixed after the scenes (the staff sweep,
+  // a cue) can drive it harder than the mode allows.
+  audio_low_vibration_.store(on, std::memory_order_release);
 }
 
 void KioskEngine::SetAmbientGainDb(double gain_db) {
@@ -790,6 +798,12 @@ void KioskEngine::ApplySwitchOnAudio(int slot) noexcept {
 
 void KioskEngine::Render(float* interleaved, int frames, int channels) noexcept {
   const double fs_hz = options_.config.sample_rate_hz;
+  if (const bool low = audio_low_vibration_.load(std::memory_order_acquire);
+      low != safety_low_vibration_) {
+    safety_low_vibration_ = low;
+    safety_.SetCeilings(speaker_ceiling_,
+                        transducer_ceiling_ * (low ? low_vibration_factor_ : 1.0));
+  }
   const std::int64_t start_ns =
       options_.virtual_clock ? virtual_now_ns_ : platform::MonotonicNowNs();
   const int max_chunk = static_cast<int>(scratch_a_.size() / 2);
@@ -846,11 +860,11 @@ void KioskEngine::RenderSegment(float* out, int channels, int begin, int end,
     clip_pos_ += n;
     if (clip_pos_ >= clip.size()) playing_clip_ = -1;
   }
+  // Everything is mixed: the safety stage is the last step (its ceilings hold for every source).
   for (int i = 0; i < frames; ++i) {
+    safety_.Process(a + 2 * static_cast<std::ptrdiff_t>(i));
     float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;
-    for (int c = 0; c < channels; ++c) {
-      frame[c] = c < 2 ? std::clamp(a[2 * i + c], -1.0f, 1.0f) : 0.0f;
-    }
+    for (int c = 0; c < channels; ++c) frame[c] = c < 2 ? a[2 * i + c] : 0.0f;
   }
 }
 
@@ -875,8 +889,11 @@ void KioskEngine::RenderChunk(float* out, int frames, int channels,
       command.frame_offset = static_cast<std::uint32_t>(offset - segment_start);
       block_commands_[static_cast<std::size_t>(count++)] = command;
       commands_done_.fetch_add(1, std::memory_order_relaxed);
+      // Due when it leaves the safety stage, kDelayFrames after the scene renders it.
       const std::int64_t due_ns =
-          chunk_start_ns + static_cast<std::int64_t>(std::llround(offset * 1e9 / fs_hz));
+          chunk_start_ns +
+          static_cast<std::int64_t>(
+              std::llround((offset + synth::SafetyStage::kDelayFrames) * 1e9 / fs_hz));
       const std::int64_t latency = due_ns - message.time_ns;
       latency_last_ns_.store(latency, std::memory_order_relaxed);
       if (latency > latency_max_ns_.load(std::memory_order_relaxed)) {

@@ -48,6 +48,7 @@
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
 #include "surface/texture_set.h"
+#include "synth/safety_stage.h"
 #include "synth/scene.h"
 
 namespace sas::kiosk {
@@ -227,7 +228,7 @@ class KioskEngine final : public platform::AudioRenderer {
   std::vector<std::string> counter_keys_;  // every texture path's key, token order
   std::vector<int> token_texture_;         // token -> index in textures_, -1 when left out
   std::vector<std::string> texture_failures_;
-  UsageCounters file_counters_;  // as read at start (counter_keys_ order)
+  UsageCounters file_counters_;    // as read at start (counter_keys_ order)
   bool counters_may_save_ = true;  // false: a damaged counters file stays untouched
   platform::DeviceStatusBoard* board_ = nullptr;
   GestureMapping mapping_;
@@ -240,6 +241,8 @@ class KioskEngine final : public platform::AudioRenderer {
   bool recording_ = false;
   std::string cues_dir_;
   bool low_vibration_ = false;
+  double speaker_ceiling_ = 1.0, transducer_ceiling_ = 1.0;  // linear, from the configuration
+  double low_vibration_factor_ = 1.0;                        // transducer ceiling factor
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
   std::vector<Clip> clips_;
@@ -284,6 +287,10 @@ class KioskEngine final : public platform::AudioRenderer {
   std::int64_t virtual_now_ns_ = 0;
   std::vector<synth::ProbeCommand> block_commands_;
   std::vector<float> scratch_a_, scratch_b_;
+  // The last stage before the device: every source is mixed before it (synth/safety_stage.h).
+  synth::SafetyStage safety_;
+  bool safety_low_vibration_ = false;             // the ceilings the stage has now
+  std::atomic<bool> audio_low_vibration_{false};  // set by SetLowVibration (control thread)
   std::atomic<int> audio_active_{-1};
   std::atomic<int> audio_fade_from_{-1};
   std::atomic<std::uint64_t> switches_done_{0};

@@ -73,6 +73,7 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.gpio_lines == defaults.gpio_lines);
   CHECK(shipped.mcp2221_path == defaults.mcp2221_path);
   CHECK(shipped.pen_seat == defaults.pen_seat);
+  CHECK(shipped.sound_ceiling_db == defaults.sound_ceiling_db);
   CHECK(shipped.haptic_ceiling_db == defaults.haptic_ceiling_db);
   CHECK(shipped.low_vibration_db == defaults.low_vibration_db);
   CHECK(shipped.ambient_adaptive == defaults.ambient_adaptive);
@@ -87,10 +88,12 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
 
 TEST_CASE("vibration ceiling, low-vibration and ambient gain keys are validated", "[kiosk]") {
   const auto config = ParseKioskConfig(
-      "[gains]\nhaptic_ceiling_db = -9.5\nlow_vibration_db = 18\nambient_adaptive = true\n"
+      "[gains]\nsound_ceiling_db = -3\nhaptic_ceiling_db = -9.5\nlow_vibration_db = 18\n"
+      "ambient_adaptive = true\n"
       "ambient_min_db = -3\nambient_max_db = 9\nambient_per_db = 0.75\n"
       "ambient_quiet_dbfs = -55\nambient_rate_db_per_s = 0.5\n",
       "k.toml");
+  CHECK(config.sound_ceiling_db == -3.0);
   CHECK(config.haptic_ceiling_db == -9.5);
   CHECK(config.low_vibration_db == 18.0);
   CHECK(config.ambient_adaptive);
@@ -103,6 +106,8 @@ TEST_CASE("vibration ceiling, low-vibration and ambient gain keys are validated"
   CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nhaptic_ceiling_db = 3\n", "k.toml"),
                     Catch::Contains("k.toml:2") && Catch::Contains("gains.haptic_ceiling_db") &&
                         Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nsound_ceiling_db = 0.5\n", "k.toml"),
+                    Catch::Contains("gains.sound_ceiling_db") && Catch::Contains("out of range"));
   CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nlow_vibration_db = -6\n", "k.toml"),
                     Catch::Contains("out of range"));
   CHECK_THROWS_WITH(ParseKioskConfig("[gains]\nambient_adaptive = \"yes\"\n", "k.toml"),

@@ -2,12 +2,15 @@
 // click-free switch, the voice slot's life and the persisted counters, with the real textures.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <vector>
 
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
 #include "support/smaps.h"
 #include "support/temp_dir.h"
+#include "support/true_peak.h"
 
 using sas::kiosk::KioskEngine;
 using sas::kiosk::KioskEngineOptions;
@@ -54,9 +57,34 @@ PenInput Pen(std::int64_t t_ns, double x, double y, bool down) {
   return pen;
 }
 
+// A mono 32-bit float WAV written byte by byte: the product's writer refuses NaN, a hostile file
+// need not.
+void WriteRawFloatWav(const std::string& path, const std::vector<float>& samples) {
+  std::ofstream out(path, std::ios::binary);
+  const auto u32 = [&](std::uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+  const auto u16 = [&](std::uint16_t v) { out.write(reinterpret_cast<const char*>(&v), 2); };
+  const auto bytes = static_cast<std::uint32_t>(samples.size() * 4);
+  out.write("RIFF", 4);
+  u32(36 + bytes);
+  out.write("WAVEfmt ", 8);
+  u32(16);
+  u16(3);  // IEEE float
+  u16(1);
+  u32(48000);
+  u32(48000 * 4);
+  u16(4);
+  u16(32);
+  out.write("data", 4);
+  u32(bytes);
+  out.write(reinterpret_cast<const char*>(samples.data()), static_cast<std::streamsize>(bytes));
+}
+
 }  // namespace
 
-TEST_CASE("engine: a pen event lands exactly one audio buffer after it happened", "[kiosk]") {
+TEST_CASE(
+    "engine: a pen event is heard one audio buffer plus the safety stage's look-ahead after "
+    "it happened, within one buffer + 1 ms",
+    "[kiosk]") {
   KioskEngine engine(Options());
   engine.SetAudioRunning(true);
   RenderBlocks(engine, 11);  // silence; the virtual clock is now at the start of block 11
@@ -73,12 +101,16 @@ TEST_CASE("engine: a pen event lands exactly one audio buffer after it happened"
       break;
     }
   }
-  CHECK(first >= kFrames / 3);  // not before the event's own place in the period
-  CHECK(first <= kFrames / 3 + 8);
+  // Not before the event's own place in the period plus the safety stage's delay line.
+  const int delay = sas::synth::SafetyStage::kDelayFrames;
+  CHECK(first >= kFrames / 3 + delay);
+  CHECK(first <= kFrames / 3 + delay + 8);
   const auto stats = engine.audio_stats();
-  // The pen-to-sample delay is one buffer, to within a frame.
-  CHECK(std::abs(static_cast<double>(stats.pen_to_sample_last_ns) - 1e9 * kFrames / kFs) <
+  // The pen-to-sample delay is one buffer plus that delay line, to within a frame...
+  CHECK(std::abs(static_cast<double>(stats.pen_to_sample_last_ns) - 1e9 * (kFrames + delay) / kFs) <
         1e9 / kFs + 1.0);
+  // ...inside the budget of one buffer + 1 ms.
+  CHECK(static_cast<double>(stats.pen_to_sample_last_ns) <= 1e9 * kFrames / kFs + 1e6);
   CHECK(stats.commands == 1);
 }
 
@@ -243,4 +275,75 @@ TEST_CASE(
   const double rise_db = 20.0 * std::log10(ChannelRms(busy_room, 0) / ChannelRms(quiet_room, 0));
   CHECK(rise_db == Approx(6.0).margin(0.5));
   CHECK(ChannelRms(busy_room, 1) == Approx(ChannelRms(quiet_room, 1)).epsilon(1e-6));
+}
+
+TEST_CASE(
+    "engine: nothing reaches either output above its ceiling, whatever the source - cue "
+    "files of 1e30 and NaN, the staff sweep in low-vibration mode, the test tone, the "
+    "loudest strokes at the largest gains",
+    "[kiosk][safety]") {
+  sas::test::TempDir cues;
+  // Hostile cue files where the kiosk looks for the texture names.
+  std::vector<float> huge(48000, 1e30f), nan(48000, std::nanf(""));
+  for (std::size_t i = 0; i < huge.size(); i += 2) huge[i] = -1e30f;
+  for (const char* key : {"bubble_wrap", "broken_glass", "cracked_ground", "wooden_board"}) {
+    WriteRawFloatWav(cues.file(std::string(key) + "_name.wav"), huge);
+    WriteRawFloatWav(cues.file(std::string(key) + "_description.wav"), nan);
+  }
+  KioskEngineOptions options = Options();
+  options.cues_dir = cues.path();
+  options.config.sound_gain_db = 40.0;  // every gain at its largest accepted value
+  options.config.haptic_gain_db = 40.0;
+  options.config.sound_ceiling_db = -6.0;
+  options.config.haptic_ceiling_db = -20.0;
+  options.config.low_vibration_db = 12.0;
+  KioskEngine engine(options);
+  engine.SetAudioRunning(true);
+  const double speaker = std::pow(10.0, -6.0 / 20.0);
+  double transducer = std::pow(10.0, -20.0 / 20.0);
+
+  std::vector<float> audio;
+  const auto play = [&](int blocks) {
+    const auto out = RenderBlocks(engine, blocks);
+    audio.insert(audio.end(), out.begin(), out.end());
+  };
+  std::int64_t t = 0;
+  for (int token = 0; token < 4; ++token) {  // each switch speaks the (hostile) texture name
+    engine.OnToken(t, token);
+    engine.Tick(t);
+    play(40);
+    t += 40 * kBlockNs;
+    for (int i = 0; i < 150; ++i) {  // a hard, fast scrape at full pressure
+      PenInput pen = Pen(t, 300 + 8.0 * i, 300 + 2.0 * i, true);
+      pen.pressure = 1.0;
+      pen.tilt_deg = 0.0;
+      engine.OnPen(pen);
+      play(1);
+      t += kBlockNs;
+    }
+    engine.OnPen(Pen(t, 1500, 600, false));
+    play(40);
+    t += 40 * kBlockNs;
+  }
+  engine.PlayTestTone();
+  play(400);
+  INFO("speaker ceiling " << speaker << ", transducer " << transducer);
+  CHECK(engine.cues_loaded() == 0);  // the hostile cue files were refused at load
+  for (const float v : audio) REQUIRE(std::isfinite(v));
+  CHECK(sas::test::TruePeak(audio, 2, 0) <= speaker);
+  CHECK(sas::test::TruePeak(audio, 2, 1) <= transducer);
+
+  // Low-vibration mode lowers the transducer's ceiling: the full-scale staff sweep stays under it.
+  engine.SetLowVibration(true);
+  transducer *= std::pow(10.0, -12.0 / 20.0);
+  audio.clear();
+  RenderBlocks(engine, 1);  // the mode reaches the audio side at the next block
+  engine.PlayTransducerSweep();
+  play(900);
+  CHECK(sas::test::TruePeak(audio, 2, 1) <= transducer);
+  double peak = 0.0;
+  for (std::size_t i = 1; i < audio.size(); i += 2)
+    peak = std::max(peak, double(std::fabs(audio[i])));
+  CHECK(peak <= transducer);
+  CHECK(peak > 0.5 * transducer);  // the sweep did play, limited to the ceiling
 }
