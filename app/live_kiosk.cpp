@@ -228,9 +228,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return kiosk::kExitRuntimeError;
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
-  // SIGHUP (the unit's reload) would otherwise end the kiosk and lose the counters since the
-  // last save; the loop saves them instead (one arriving while the textures load waits for the
-  // first pass). A closed stdout/stderr pipe must not end it either.
+  // SIGHUP (the unit's reload) or SIGUSR1 would otherwise end the kiosk and lose the counters
+  // since the last save; the loop saves them, or reports the status, instead (one arriving while
+  // the textures load waits for the first pass). A closed stdout/stderr pipe must not end it
+  // either.
   kiosk::CatchHangupAndIgnoreWriteSignals();
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
@@ -337,7 +338,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   pen_config.seat = config.pen_seat;
   pen_config.device_name_contains = config.pen_device;
   auto pen = platform::OpenPen(pen_config, board);
-  kiosk::KioskControl control(*engine, {output.get(), pen.get(), &switches}, log);
+  kiosk::KioskControl control(*engine, {output.get(), pen.get(), &switches, &board}, log);
 
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   watchdog.Watch("audio", [&]() -> std::int64_t {
@@ -405,8 +406,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
 
-  while (!kiosk::StopRequested()) {
-    if (kiosk::TakeHangupRequest()) control.Hangup();
+  while (!control.HandleSignals()) {
     const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen && pen->Connected() ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;

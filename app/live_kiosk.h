@@ -28,8 +28,8 @@ struct KioskBackends {
 };
 
 // Runs until SIGTERM/SIGINT (systemd's stop), saving the usage counters on the way out. SIGHUP
-// saves them at once and the kiosk runs on; SIGPIPE is ignored. Returns the exit code; 1 when no
-// window opens.
+// saves them at once and the kiosk runs on; SIGUSR1 writes the devices' status to the journal;
+// SIGPIPE is ignored. Returns the exit code; 1 when no window opens.
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends = {});
 
