@@ -308,7 +308,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // Supervised on its own thread: a reopen can sit in ALSA for seconds, and the screen, the pen
   // and the idle reset must not wait for it.
   auto output = std::make_unique<platform::BackgroundAudioOutput>(
-      platform::MakePortAudioOutput(*engine, output_config, board));
+      backends.audio_stream ? std::make_unique<platform::SupervisedAudioOutput>(
+                                  backends.audio_stream(), *engine, output_config, board)
+                            : platform::MakePortAudioOutput(*engine, output_config, board));
   output->Start();  // absent: runs silent, the supervision thread retries with back-off
   engine->SetAudioRunning(output->Running());
 
@@ -407,6 +409,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   double ambient_last_s = -1.0;
 
   while (!control.HandleSignals()) {
+    const std::int64_t pass_start_ns = platform::MonotonicNowNs();
     const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen && pen->Connected() ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;
@@ -469,6 +472,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       window.Present(view->view().TakeFrame());
     }
     watchdog.Tick(now_ns);
+    if (backends.on_pass) backends.on_pass(pass_start_ns, platform::MonotonicNowNs());
   }
   control.Shutdown();
   input->Stop();
