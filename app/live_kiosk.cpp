@@ -228,9 +228,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return kiosk::kExitRuntimeError;
   }
   if (options.state_dir.empty()) options.state_dir = DefaultStateDir();
-  // SIGHUP (the unit's reload) would otherwise end the kiosk and lose the counters since the
-  // last save; the loop saves them instead (one arriving while the textures load waits for the
-  // first pass). A closed stdout/stderr pipe must not end it either.
+  // SIGHUP (the unit's reload) or SIGUSR1 would otherwise end the kiosk and lose the counters
+  // since the last save; the loop saves them, or reports the status, instead (one arriving while
+  // the textures load waits for the first pass). A closed stdout/stderr pipe must not end it
+  // either.
   kiosk::CatchHangupAndIgnoreWriteSignals();
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
@@ -307,7 +308,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // Supervised on its own thread: a reopen can sit in ALSA for seconds, and the screen, the pen
   // and the idle reset must not wait for it.
   auto output = std::make_unique<platform::BackgroundAudioOutput>(
-      platform::MakePortAudioOutput(*engine, output_config, board));
+      backends.audio_stream ? std::make_unique<platform::SupervisedAudioOutput>(
+                                  backends.audio_stream(), *engine, output_config, board)
+                            : platform::MakePortAudioOutput(*engine, output_config, board));
   output->Start();  // absent: runs silent, the supervision thread retries with back-off
   engine->SetAudioRunning(output->Running());
 
@@ -337,7 +340,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   pen_config.seat = config.pen_seat;
   pen_config.device_name_contains = config.pen_device;
   auto pen = platform::OpenPen(pen_config, board);
-  kiosk::KioskControl control(*engine, {output.get(), pen.get(), &switches}, log);
+  kiosk::KioskControl control(*engine, {output.get(), pen.get(), &switches, &board}, log);
 
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   watchdog.Watch("audio", [&]() -> std::int64_t {
@@ -405,8 +408,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
 
-  while (!kiosk::StopRequested()) {
-    if (kiosk::TakeHangupRequest()) control.Hangup();
+  while (!control.HandleSignals()) {
+    const std::int64_t pass_start_ns = platform::MonotonicNowNs();
     const int wait_ms = view->view().NeedsRedraw() ? 0 : (pen && pen->Connected() ? 2 : 8);
     for (const auto& event : window.PollEvents(wait_ms)) {
       using Kind = ui::UiEvent::Kind;
@@ -469,6 +472,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       window.Present(view->view().TakeFrame());
     }
     watchdog.Tick(now_ns);
+    if (backends.on_pass) backends.on_pass(pass_start_ns, platform::MonotonicNowNs());
   }
   control.Shutdown();
   input->Stop();

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "platform/audio/audio_output.h"
 #include "platform/gpio/gpio_switches.h"
 
 namespace sas::app {
@@ -22,14 +23,21 @@ namespace sas::app {
 // gpio-sim); the backend choice, the GPIO switch thread, debounce, active-low and the token rule
 // stay the real ones. It is called only when [switches] backend is "gpio" or "auto", must not
 // throw, and may return null (then libgpiod is used).
+//
+// The UI latency measurement (tests/bench/ui_latency_audio_loss.sh) uses two more: `audio_stream`,
+// when set, is the audio output's device in place of PortAudio (the supervision, its back-off and
+// its background thread stay the real ones), and `on_pass`, when set, is called at the end of
+// every pass of the UI loop with the pass's start and end (CLOCK_MONOTONIC ns); it must be quick.
 struct KioskBackends {
   std::function<std::unique_ptr<platform::GpioEventSource>(const platform::GpioSwitchConfig&)>
       gpio_events;
+  std::function<std::unique_ptr<platform::AudioStreamBackend>()> audio_stream;
+  std::function<void(std::int64_t start_ns, std::int64_t end_ns)> on_pass;
 };
 
 // Runs until SIGTERM/SIGINT (systemd's stop), saving the usage counters on the way out. SIGHUP
-// saves them at once and the kiosk runs on; SIGPIPE is ignored. Returns the exit code; 1 when no
-// window opens.
+// saves them at once and the kiosk runs on; SIGUSR1 writes the devices' status to the journal;
+// SIGPIPE is ignored. Returns the exit code; 1 when no window opens.
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends = {});
 

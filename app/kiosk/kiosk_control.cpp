@@ -3,6 +3,8 @@
 
 #include <malloc.h>
 
+#include "kiosk/kiosk_signals.h"
+
 namespace sas::kiosk {
 
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded) {
@@ -110,6 +112,25 @@ bool KioskControl::Hangup() {
   }
   log_->Info("kiosk", "SIGHUP: usage counters saved; " + config_note);
   return true;
+}
+
+void KioskControl::ReportStatus() {
+  std::string line = "SIGUSR1: status:";
+  if (devices_.board != nullptr) {
+    for (const auto& status : devices_.board->All()) {
+      line += " " + status.device + " " + platform::DeviceStateName(status.state) +
+              (status.backend.empty() ? "" : " (" + status.backend + ")") + ";";
+    }
+  }
+  line += " audio " + std::string(devices_.output->Running() ? "running" : "silent") + "; visits " +
+          std::to_string(engine_->session().counters().sessions);
+  log_->Info("kiosk", line);
+}
+
+bool KioskControl::HandleSignals() {
+  if (kiosk::TakeHangupRequest()) Hangup();
+  if (kiosk::TakeStatusRequest()) ReportStatus();
+  return kiosk::StopRequested();
 }
 
 void LogSessionActions(platform::Logger& log, const KioskEngine& engine,

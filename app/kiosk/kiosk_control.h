@@ -48,9 +48,10 @@ void ReportTextures(platform::DeviceStatusBoard& board, const KioskEngine& engin
 void TuneAllocatorForLongRuns();
 
 struct KioskDevices {
-  platform::AudioOutput* output = nullptr;     // required
-  platform::PenSource* pen = nullptr;          // null: no libinput at all (mouse/touch)
-  platform::SwitchInputs* switches = nullptr;  // required
+  platform::AudioOutput* output = nullptr;             // required
+  platform::PenSource* pen = nullptr;                  // null: no libinput at all (mouse/touch)
+  platform::SwitchInputs* switches = nullptr;          // required
+  const platform::DeviceStatusBoard* board = nullptr;  // null: SIGUSR1's status names no device
 };
 
 class KioskControl {
@@ -72,6 +73,12 @@ class KioskControl {
   // save, and one journal line says so and that the configuration is only read at start. The
   // loop goes on. False when the save failed (logged).
   bool Hangup();
+  // SIGUSR1: one journal line (info) with every status board entry and the visit count, for staff
+  // without the panel (`systemctl kill -s USR1`). The loop goes on.
+  void ReportStatus();
+  // Between passes: acts on the flags the signal handlers raised (kiosk_signals.h): SIGHUP ->
+  // Hangup(), SIGUSR1 -> ReportStatus(). True when SIGTERM/SIGINT asked the loop to end.
+  bool HandleSignals();
 
   bool record_down() const { return record_down_; }
   const platform::TokenSelector& selector() const { return selector_; }

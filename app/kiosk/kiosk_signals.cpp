@@ -9,6 +9,7 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 std::atomic<bool> g_hangup{false};
+std::atomic<bool> g_status{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "signal handlers need a lock-free flag");
 
 void OnStop(int /*signal*/) {
@@ -17,6 +18,10 @@ void OnStop(int /*signal*/) {
 
 void OnHangup(int /*signal*/) {
   g_hangup.store(true);
+}
+
+void OnStatus(int /*signal*/) {
+  g_status.store(true);
 }
 
 // sigaction rather than signal(): the semantics (handler stays, SA_RESTART) are spelled out.
@@ -32,6 +37,7 @@ void Handle(int signal, void (*handler)(int)) {
 
 void CatchHangupAndIgnoreWriteSignals() {
   Handle(SIGHUP, OnHangup);
+  Handle(SIGUSR1, OnStatus);
   Handle(SIGPIPE, SIG_IGN);
   Handle(SIGXFSZ, SIG_IGN);
 }
@@ -47,6 +53,10 @@ bool StopRequested() {
 
 bool TakeHangupRequest() {
   return g_hangup.exchange(false);
+}
+
+bool TakeStatusRequest() {
+  return g_status.exchange(false);
 }
 
 }  // namespace sas::kiosk

@@ -112,12 +112,15 @@ bool GpioSwitchInput::Start(std::string* error) {
   Stop();
   if (!source_) {
     try {
-      source_ = MakeLibgpiodEventSource(config_);
+      source_ = factory_ ? factory_() : MakeLibgpiodEventSource(config_);
+      if (!source_) throw std::runtime_error("GPIO lines unavailable");
     } catch (const std::exception& e) {
       if (error) *error = e.what();
       return false;
     }
   }
+  describe_ = source_->Describe();
+  lost_.store(false, std::memory_order_release);
   const auto levels = source_->InitialLevels();
   processor_.SetInitialLevels(levels);
   for (int i = 0; i < kSwitchInputCount; ++i)
@@ -148,6 +151,39 @@ void GpioSwitchInput::Stop() {
 }
 
 void GpioSwitchInput::Run() {
+  for (;;) {
+    if (!Listen()) return;  // Stop()
+    // The lines failed: the fds are dead (poll would report them again at once), so close them
+    // and say it once; tokens stay as they were, the keyboard still works.
+    source_.reset();
+    lost_.store(true, std::memory_order_release);
+    if (board_ != nullptr) {
+      board_->AddFailure("switches");
+      board_->Set("switches", DeviceState::kLost,
+                  "GPIO lines lost (" + describe_ +
+                      "); tokens frozen, keys 1-4 (R records) still work, waiting for them to "
+                      "return",
+                  "gpio");
+    }
+    // Retry quietly, the thread's heartbeat going on for the watchdog: no line per attempt.
+    int waited_ms = 0;
+    for (;;) {
+      heartbeat_ns_.store(MonotonicNowNs(), std::memory_order_relaxed);
+      if (WaitForStop(kHeartbeatMs)) return;
+      waited_ms += kHeartbeatMs;
+      if (waited_ms < kReopenIntervalMs) continue;
+      waited_ms = 0;
+      if (Reopen(MonotonicNowNs())) break;
+    }
+    lost_.store(false, std::memory_order_release);
+    if (board_ != nullptr) {
+      board_->AddReconnect("switches");
+      board_->Set("switches", DeviceState::kOk, "GPIO lines back (" + describe_ + ")", "gpio");
+    }
+  }
+}
+
+bool GpioSwitchInput::Listen() {
   std::vector<pollfd> fds = source_->Fds();
   fds.push_back({stop_fd_, POLLIN, 0});
   std::vector<pollfd> ready;
@@ -166,12 +202,12 @@ void GpioSwitchInput::Run() {
     }
     for (auto& fd : fds) fd.revents = 0;
     const int n = poll(fds.data(), static_cast<nfds_t>(fds.size()), timeout_ms);
-    if (n < 0 && errno != EINTR) return;
-    if (fds.back().revents != 0) return;  // Stop()
+    if (n < 0 && errno != EINTR) return true;
+    if (fds.back().revents != 0) return false;  // Stop()
     if (n > 0) {
       ready.assign(fds.begin(), fds.end() - 1);
       edges.clear();
-      if (!source_->Read(ready, edges)) return;
+      if (!source_->Read(ready, edges)) return true;
       // Lines are read fd by fd: restore global time order before the state machines see them.
       std::stable_sort(edges.begin(), edges.end(),
                        [](const RawEdge& a, const RawEdge& b) { return a.time_ns < b.time_ns; });
@@ -180,6 +216,32 @@ void GpioSwitchInput::Run() {
     }
     processor_.Advance(MonotonicNowNs(), sink);
   }
+}
+
+bool GpioSwitchInput::Reopen(std::int64_t now_ns) {
+  try {
+    source_ = factory_ ? factory_() : MakeLibgpiodEventSource(config_);
+    if (!source_) return false;
+    const auto levels = source_->InitialLevels();
+    // Whatever changed while nobody listened is a change now, so the token rule sees it.
+    GpioEdgeProcessor fresh(config_.active_low, 0);
+    fresh.SetInitialLevels(levels);
+    for (int i = 0; i < kSwitchInputCount; ++i) {
+      if (fresh.Pressed(i) != processor_.Pressed(i))
+        queue_.TryPush(SwitchEvent{now_ns, static_cast<std::int8_t>(i), fresh.Pressed(i)});
+    }
+    processor_.SetInitialLevels(levels);
+    describe_ = source_->Describe();
+    return true;
+  } catch (const std::exception&) {
+    source_.reset();
+    return false;
+  }
+}
+
+bool GpioSwitchInput::WaitForStop(int timeout_ms) {
+  pollfd stop{stop_fd_, POLLIN, 0};
+  return poll(&stop, 1, timeout_ms) > 0 && stop.revents != 0;
 }
 
 }  // namespace sas::platform

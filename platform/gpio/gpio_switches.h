@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -78,24 +79,50 @@ class GpioEdgeProcessor {
   Debouncer debouncer_;
 };
 
+// Lines that fail once running (a chip on a removable board, a driver unbound: poll reports
+// POLLERR or reading an event fails) are a lost device, not the end of the thread: one "lost"
+// status line (tokens frozen, keys 1-4 still work), then the thread stays alive for the watchdog
+// and tries to open the lines again every `kReopenIntervalMs`; when they answer, the switches'
+// levels at that moment count as changes (a token placed meanwhile is placed now) and one "ok"
+// line says they are back.
 class GpioSwitchInput final : public SwitchInput {
  public:
+  using SourceFactory = std::function<std::unique_ptr<GpioEventSource>()>;
+  static constexpr int kReopenIntervalMs = 1000;
+
   // `source` may be null: Start() then builds the libgpiod source from `config` (and reports a
   // missing chip as an error rather than an exception).
   GpioSwitchInput(GpioSwitchConfig config, std::unique_ptr<GpioEventSource> source = nullptr);
   ~GpioSwitchInput() override;
   const char* Name() const override { return "gpio"; }
+  // Where loss and return are reported (status key "switches"); set before Start.
+  void ReportTo(DeviceStatusBoard* board) { board_ = board; }
+  // How the lines are opened again after a loss (may throw); default: libgpiod from `config`.
+  void SetSourceFactory(SourceFactory factory) { factory_ = std::move(factory); }
   bool Start(std::string* error) override;
   void Stop() override;
   std::uint64_t EdgesSeen() const { return edges_.load(std::memory_order_relaxed); }
   // Debounced state at start (after Start): which switches are closed.
   bool InitiallyPressed(int input) const { return initial_[static_cast<std::size_t>(input)]; }
 
+  // True while the lines are lost (after a failure, until they are opened again).
+  bool lost() const { return lost_.load(std::memory_order_acquire); }
+
  private:
   void Run();
+  // Waits for edges until Stop() (returns false) or the lines fail (returns true).
+  bool Listen();
+  // After a failure: true when the lines opened again (events for what changed meanwhile queued).
+  bool Reopen(std::int64_t now_ns);
+  // Waits up to `timeout_ms` for Stop(); true when it came.
+  bool WaitForStop(int timeout_ms);
 
   GpioSwitchConfig config_;
   std::unique_ptr<GpioEventSource> source_;
+  SourceFactory factory_;
+  DeviceStatusBoard* board_ = nullptr;
+  std::string describe_;
+  std::atomic<bool> lost_{false};
   GpioEdgeProcessor processor_;
   std::array<bool, kSwitchInputCount> initial_{};
   int stop_fd_ = -1;

@@ -11,6 +11,7 @@ SwitchInputs OpenSwitchInputs(const SwitchesConfig& config, DeviceStatusBoard& b
   std::string why;
   if (want_gpio) {
     auto gpio = std::make_unique<GpioSwitchInput>(config.gpio, std::move(gpio_source));
+    gpio->ReportTo(&board);  // a loss once running: one line, and one when the lines return
     std::string error;
     if (gpio->Start(&error)) {
       board.Set("switches", DeviceState::kOk,

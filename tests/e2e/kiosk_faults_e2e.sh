@@ -6,7 +6,8 @@
 #     saving counters and while logging);
 #  2. the real binary, `sketch-a-scratch --kiosk` on Xvfb with no sound card (it runs silent):
 #     a. clean start; a visit (one click); SIGHUP: the counters saved at once, the kiosk runs on;
-#        SIGTERM: exit 0, counters saved, last good copy kept;
+#        SIGUSR1: one status line, runs on; SIGPIPE: ignored; SIGTERM: exit 0, counters saved,
+#        last good copy kept; then SIGINT in a run of its own: the same clean stop;
 #     b. a corrupt kiosk.toml: it still comes up, on the last good configuration, and says
 #        "file:line: key: what" in the journal and on the staff panel's status lines;
 #     c. SIGKILL at three points (just after a visit was saved, at start-up, when ready); every
@@ -151,6 +152,16 @@ kill -0 "$app_pid" 2>/dev/null || fail "SIGHUP ended the kiosk"
 [ "$(counter strokes.wooden_board)" = 105 ] ||
   fail "SIGHUP did not save the 2nd stroke (strokes.wooden_board $(counter strokes.wooden_board))"
 echo "ok: SIGHUP saves the counters at once and the kiosk runs on"
+# SIGUSR1 (its default action would end the process): one status line, the kiosk runs on.
+kill -s USR1 "$app_pid"
+wait_log 'info kiosk: SIGUSR1: status: .*audio silent; visits' 50 || fail "no status line for SIGUSR1"
+kill -0 "$app_pid" 2>/dev/null || fail "SIGUSR1 ended the kiosk"
+# SIGPIPE (a journal reader gone): ignored; a token key afterwards is still answered.
+kill -s PIPE "$app_pid"
+xdotool key 3
+wait_log 'showing wooden_board' 50 || fail "after SIGPIPE the kiosk did not answer token key 3"
+kill -0 "$app_pid" 2>/dev/null || fail "SIGPIPE ended the kiosk"
+echo "ok: SIGUSR1 writes the status and SIGPIPE is ignored; the kiosk runs on"
 stop_with TERM
 [ "$status" = 0 ] || fail "SIGTERM: exit status $status"
 grep -q 'info kiosk: stopping' "$work/$log" || fail "no 'stopping' line on SIGTERM"
@@ -160,6 +171,23 @@ expected_visits=$((41 + $(visits)))
 [ "$(counter strokes.wooden_board)" = 105 ] || fail "SIGTERM: the clicks' strokes were not saved"
 check_state_files
 echo "ok: SIGTERM stops cleanly (exit 0), counters saved ($expected_visits visits), last good copy kept"
+
+# a2. SIGINT (ctrl-c on a console) stops like SIGTERM: exit 0, the click's stroke saved.
+start run_a2.log
+wait_log '^kiosk ready' 300 || fail "the kiosk never reported ready (SIGINT run)"
+xdotool mousemove 700 400 click 1
+wait_log 'visit started' 50 || fail "a click did not start a visit (SIGINT run)"
+strokes_before=$(counter strokes.wooden_board)
+stop_with INT
+[ "$status" = 0 ] || fail "SIGINT: exit status $status"
+grep -q 'info kiosk: stopping' "$work/$log" || fail "no 'stopping' line on SIGINT"
+expected_visits=$((expected_visits + $(visits)))
+[ "$(counter sessions)" = "$expected_visits" ] ||
+  fail "SIGINT: sessions $(counter sessions), expected $expected_visits"
+[ "$(counter strokes.wooden_board)" -gt 105 ] ||
+  fail "SIGINT: the click's stroke was not saved (strokes.wooden_board $strokes_before -> $(counter strokes.wooden_board))"
+check_state_files
+echo "ok: SIGINT stops cleanly (exit 0), counters saved ($expected_visits visits)"
 
 # b. a corrupt configuration: up on the last good one, with the reason in journal and panel.
 printf '[audio]\nbuffer_frames = 3\n' >"$work/kiosk.toml"

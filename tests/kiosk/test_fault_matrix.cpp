@@ -1,8 +1,9 @@
 // The fault matrix: every way into the program, each row a bad input (or a fault) with the outcome
 // we promise and the check that nothing was lost. Rows are grouped by input surface, one table per
 // surface; each table is one test case that runs every row and names the row in any failure.
-// The data files and the commands' arguments are in test_fault_matrix_inputs.cpp. Rows that need
-// a real process (signals, device loss) live in tests/e2e/kiosk_faults_e2e.sh.
+// The data files and the commands' arguments are in test_fault_matrix_inputs.cpp; devices lost and
+// back and the signals in test_fault_matrix_devices.cpp (the real binary's half of the signals in
+// tests/e2e/kiosk_faults_e2e.sh).
 #include <sys/stat.h>
 
 #include <catch2/catch.hpp>

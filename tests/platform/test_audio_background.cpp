@@ -1,6 +1,7 @@
 // The audio output's supervision off the UI thread (platform/audio/background_audio_output.h):
 // while a reopen is stuck inside the device (as PortAudio's open sat in ALSA for > 3 s after a
-// card vanished), what the UI loop calls still returns.
+// card vanished), what the UI loop calls still returns; and a device that stays away through many
+// supervision rounds and reopen attempts is still one journal line, one more when it returns.
 #include <catch2/catch.hpp>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "platform/audio/background_audio_output.h"
+#include "platform/audio/fake_audio_backend.h"
 #include "platform/device_status.h"
 #include "platform/log/log.h"
 
@@ -111,4 +113,67 @@ TEST_CASE(
   CHECK(output.Running());
   output.Stop();
   CHECK_FALSE(output.Running());
+}
+
+namespace {
+
+int AudioOutLines(const Logger& log) {
+  int n = 0;
+  for (const auto& line : log.Recent()) n += line.component == "audio_out" ? 1 : 0;
+  return n;
+}
+
+// Waits (for the supervision thread) until `done`, at most 30 s.
+template <typename Done>
+bool WaitUntil(Done done) {
+  for (int i = 0; i < 3000 && !done(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return done();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "background audio output: a device gone through dozens of reopen attempts is one warning "
+    "line, and its return one info line, not one per attempt, round or callback",
+    "[platform][audio][faults]") {
+  ThreadedFakeAudioStreamBackend::Shared device;
+  SilentRenderer renderer;
+  Logger log;
+  log.SetEchoToStderr(false);
+  DeviceStatusBoard board(log);
+  AudioOutputConfig config;
+  config.reopen_backoff_initial_s = 0.005;
+  config.reopen_backoff_max_s = 0.01;
+  config.stall_timeout_s = 1e6;  // loss is seen through Healthy(), not a stall
+  BackgroundAudioOutput output(
+      std::make_unique<SupervisedAudioOutput>(
+          std::make_unique<ThreadedFakeAudioStreamBackend>(device), renderer, config, board),
+      0.002);
+  REQUIRE(output.Start());
+  REQUIRE(WaitUntil([&] { return device.blocks.load() > 10; }));  // callbacks run
+  const int at_start = AudioOutLines(log);
+  CHECK(at_start == 1);  // "ok" at the first open
+
+  device.present = false;
+  const int attempts_before = device.open_attempts.load();
+  const std::uint64_t rounds_before = output.rounds();
+  REQUIRE(WaitUntil([&] {
+    return device.open_attempts.load() >= attempts_before + 30 &&
+           output.rounds() >= rounds_before + 60;
+  }));
+  CHECK_FALSE(output.Running());
+  CHECK(board.Get("audio_out").state == DeviceState::kLost);
+  CHECK(AudioOutLines(log) == at_start + 1);
+  CHECK(log.Recent().back().level == LogLevel::kWarn);
+
+  device.present = true;
+  REQUIRE(WaitUntil([&] { return output.Running(); }));
+  const std::uint64_t blocks = device.blocks.load();
+  REQUIRE(WaitUntil([&] { return device.blocks.load() > blocks + 10; }));
+  CHECK(board.Get("audio_out").state == DeviceState::kOk);
+  CHECK(AudioOutLines(log) == at_start + 2);
+  CHECK(log.Recent().back().Text().find("info audio_out: ok: reopened") == 0);
+  output.Stop();
 }
