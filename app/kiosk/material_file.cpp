@@ -296,6 +296,21 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
     throw MaterialError(Where(source_name, LineOf(*friction.get("mu_d")), "friction.mu_d") +
                         "must not exceed friction.mu_s");
   }
+  // A tap must not leave the speaker near full scale for seconds (a material within every key's
+  // range can: light, undamped, loud modes). Refused rather than turned down: the file is wrong,
+  // and staff should hear about it, not get a quietly different material.
+  int worst = -1;
+  if (const double ring = RingDownSeconds(material.params, &worst); ring > kRingDownMaxSeconds) {
+    const auto& mode =
+        material.params.resonator.modes[static_cast<std::size_t>(std::max(worst, 0))];
+    std::ostringstream message;
+    message << source_name << ": modes: a " << kRingDownTapMps
+            << " m/s tap rings above -6 dBFS for " << ring << " s (at most " << kRingDownMaxSeconds
+            << " s); loudest then: modes[" << worst << "] (" << mode.frequency_hz << " Hz, decay_s "
+            << mode.decay_s << ", mass_kg " << mode.mass_kg << ", gain " << mode.gain
+            << "): shorten its decay, raise its mass or lower its gain";
+    throw MaterialError(message.str());
+  }
   // Optional: a material without [roughness] is smooth below the picture's pixel.
   if (root.get("roughness") != nullptr) {
     ApplyTable(RequireTable(root, "roughness", source_name), "roughness", RoughnessKeys(),
@@ -303,6 +318,34 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
     material.params.roughness.enabled = true;
   }
   return material;
+}
+
+double RingDownSeconds(const synth::MaterialParams& params, int* worst_mode) {
+  const double impulse = 2.0 * params.probe.mass_kg * kRingDownTapMps;
+  const auto amplitude = [&](double t, int* loudest) {
+    double sum = 0.0, best = -1.0;
+    for (int i = 0; i < params.resonator.mode_count; ++i) {
+      const auto& mode = params.resonator.modes[static_cast<std::size_t>(i)];
+      const double a = std::fabs(mode.gain) * impulse / mode.mass_kg * std::exp(-t / mode.decay_s);
+      sum += a;
+      if (loudest != nullptr && a > best) {
+        best = a;
+        *loudest = i;
+      }
+    }
+    return sum;
+  };
+  if (worst_mode != nullptr) *worst_mode = -1;
+  if (amplitude(0.0, nullptr) <= kRingDownLimit) return 0.0;
+  // A(t) falls monotonically: bisect for the crossing (to 1 ms) within the longest plausible ring.
+  double lo = 0.0, hi = 3600.0;
+  if (amplitude(hi, nullptr) > kRingDownLimit) return hi;
+  while (hi - lo > 1e-3) {
+    const double mid = 0.5 * (lo + hi);
+    (amplitude(mid, nullptr) > kRingDownLimit ? lo : hi) = mid;
+  }
+  if (worst_mode != nullptr) amplitude(lo, worst_mode);
+  return hi;
 }
 
 Material LoadMaterialFile(const std::string& path) {

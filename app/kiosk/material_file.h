@@ -34,6 +34,17 @@ struct Material {
 // modes above 0.45 fs at lower rates by itself.
 inline constexpr double kMaxModeFrequencyHz = 0.45 * 48000.0;
 
+// A material that rings too loud for too long (a tap must not leave the speaker near full scale
+// for seconds): the tap is kRingDownTapMps with the material's probe; the ring-down bound is
+// A(t) = Σ |gain_i| (J / m_i) e^(-t / τ_i) with J = 2 m_probe v (an elastic bounce off a rigid
+// body, the most momentum a tap can give), every mode in phase: no real ring-down is louder.
+// Returns how long A stays above kRingDownLimit (linear, at 0 dB gain) in seconds, and the mode
+// that keeps it there longest in `worst_mode` (may be null).
+inline constexpr double kRingDownTapMps = 0.5;
+inline constexpr double kRingDownLimit = 0.5;       // -6 dBFS
+inline constexpr double kRingDownMaxSeconds = 2.0;  // materials ringing longer are refused
+double RingDownSeconds(const synth::MaterialParams& params, int* worst_mode = nullptr);
+
 // Parses one material from text; `source_name` is used in messages, `name` becomes Material::name.
 Material ParseMaterial(const std::string& text, const std::string& source_name,
                        const std::string& name);

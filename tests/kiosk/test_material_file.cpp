@@ -340,3 +340,28 @@ TEST_CASE("the optional [roughness] table reaches the synth and is checked like 
                                                 "correlation_length_m = 4e-5\ngrit = 1\n"),
                     Catch::Contains("m.toml:29: roughness.grit: unknown key"));
 }
+
+TEST_CASE(
+    "a material that rings loud for seconds after a tap is refused naming the mode while the "
+    "shipped ones die away",
+    "[kiosk][safety]") {
+  // kValid's first mode made light and nearly undamped: within every key's range, but a 0.5 m/s
+  // tap (J = 2 · 4 g · 0.5 m/s) would leave it at 0.004 / 1e-4 = 40 (+32 dBFS) decaying over 30 s.
+  const std::string loud = Edit("{ frequency_hz = 440, decay_s = 0.5, mass_kg = 0.02, gain = 1.0 }",
+                                "{ frequency_hz = 440, decay_s = 30, mass_kg = 1e-4, gain = 1.0 }");
+  CHECK_THROWS_WITH(Parse(loud),
+                    Catch::Contains("m.toml: modes: a 0.5 m/s tap rings above -6 dBFS") &&
+                        Catch::Contains("modes[0] (440 Hz"));
+  // The bound itself: one mode, A(t) = 40 e^(-t/30) crosses 0.5 at t = 30 ln 80 = 131.5 s.
+  sas::synth::MaterialParams one;
+  one.probe.mass_kg = 0.004;
+  one.resonator.mode_count = 1;
+  one.resonator.modes[0] = {440.0, 30.0, 1e-4, 1.0};
+  int worst = -1;
+  CHECK(sas::kiosk::RingDownSeconds(one, &worst) == Approx(30.0 * std::log(80.0)).margin(0.01));
+  CHECK(worst == 0);
+  for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
+    INFO(material.name);
+    CHECK(sas::kiosk::RingDownSeconds(material.params) <= sas::kiosk::kRingDownMaxSeconds);
+  }
+}
