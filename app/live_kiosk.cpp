@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "kiosk/ambient_gain.h"
 #include "kiosk/command_line.h"
@@ -149,6 +150,14 @@ class StaffPanel {
              " MS, MAX " + Fixed(static_cast<double>(engine_stats.pen_to_sample_max_ns) * 1e-6, 2) +
              " MS (TARGET " + Fixed(buffer_ms + 1.0, 2) + " MS), DROPPED " +
              std::to_string(engine_stats.dropped_commands),
+         white);
+    // The dose, for staff (README, staff guide: turning it into dB SPL with a phone meter once).
+    const auto leq = [](std::optional<double> db) {
+      return db ? Fixed(*db, 1) + " DBFS" : std::string("-");
+    };
+    line("SPEAKER LEQ: LAST VISIT " + leq(in.engine->exposure().LastVisitDb()) + ", LAST HOUR " +
+             leq(in.engine->exposure().LastHourDb()) + " (SPEAKER CEILING " +
+             Fixed(in.engine->config().sound_ceiling_db, 1) + " DBTP)",
          white);
     std::string tokens = "SWITCHES: " + std::string(in.switches->ActiveBackend()) + ", TOKENS";
     for (int t = 0; t < platform::kTokenCount; ++t) {

@@ -494,6 +494,11 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
   const double now_s = static_cast<double>(now_ns) * 1e-9;
   if (!audio_running_) SetAudioRunning(false);  // keep the pool moving without a device
   session_.Tick(now_s);
+  {
+    const std::uint64_t frames = audio_speaker_frames_.load(std::memory_order_acquire);
+    exposure_.Update(now_ns, audio_speaker_energy_.load(std::memory_order_relaxed), frames,
+                     session_.mode() != SessionMode::kAttract);
+  }
   std::vector<SessionAction> all;
   // Applying actions can produce more (a finished recording becomes a surface): loop.
   for (int round = 0; round < 4; ++round) {
@@ -863,9 +868,14 @@ void KioskEngine::RenderSegment(float* out, int channels, int begin, int end,
   // Everything is mixed: the safety stage is the last step (its ceilings hold for every source).
   for (int i = 0; i < frames; ++i) {
     safety_.Process(a + 2 * static_cast<std::ptrdiff_t>(i));
+    speaker_energy_ += static_cast<double>(a[2 * i]) * a[2 * i];
     float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;
     for (int c = 0; c < channels; ++c) frame[c] = c < 2 ? a[2 * i + c] : 0.0f;
   }
+  // The frames go out last, with release: a reader that sees them sees at least their energy.
+  speaker_frames_ += static_cast<std::uint64_t>(frames);
+  audio_speaker_energy_.store(speaker_energy_, std::memory_order_relaxed);
+  audio_speaker_frames_.store(speaker_frames_, std::memory_order_release);
 }
 
 void KioskEngine::RenderChunk(float* out, int frames, int channels,
@@ -891,9 +901,8 @@ void KioskEngine::RenderChunk(float* out, int frames, int channels,
       commands_done_.fetch_add(1, std::memory_order_relaxed);
       // Due when it leaves the safety stage, kDelayFrames after the scene renders it.
       const std::int64_t due_ns =
-          chunk_start_ns +
-          static_cast<std::int64_t>(
-              std::llround((offset + synth::SafetyStage::kDelayFrames) * 1e9 / fs_hz));
+          chunk_start_ns + static_cast<std::int64_t>(std::llround(
+                               (offset + synth::SafetyStage::kDelayFrames) * 1e9 / fs_hz));
       const std::int64_t latency = due_ns - message.time_ns;
       latency_last_ns_.store(latency, std::memory_order_relaxed);
       if (latency > latency_max_ns_.load(std::memory_order_relaxed)) {

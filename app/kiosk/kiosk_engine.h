@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/exposure_meter.h"
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/material_file.h"
@@ -166,6 +167,8 @@ class KioskEngine final : public platform::AudioRenderer {
   float mic_level() const { return recorder_ ? recorder_->Level() : 0.0f; }
   bool recorder_present() const { return recorder_ != nullptr; }
   EngineAudioStats audio_stats() const;
+  // The speaker's Leq over the last visit and the last hour (exposure_meter.h), updated by Tick.
+  const ExposureMeter& exposure() const { return exposure_; }
   const KioskConfig& config() const { return options_.config; }
   const std::string& cues_dir() const { return cues_dir_; }
   int cues_loaded() const;
@@ -243,6 +246,7 @@ class KioskEngine final : public platform::AudioRenderer {
   bool low_vibration_ = false;
   double speaker_ceiling_ = 1.0, transducer_ceiling_ = 1.0;  // linear, from the configuration
   double low_vibration_factor_ = 1.0;                        // transducer ceiling factor
+  ExposureMeter exposure_;
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
   std::vector<Clip> clips_;
@@ -291,6 +295,11 @@ class KioskEngine final : public platform::AudioRenderer {
   synth::SafetyStage safety_;
   bool safety_low_vibration_ = false;             // the ceilings the stage has now
   std::atomic<bool> audio_low_vibration_{false};  // set by SetLowVibration (control thread)
+  // The speaker's running totals after the safety stage (audio thread writes, Tick reads).
+  double speaker_energy_ = 0.0;
+  std::uint64_t speaker_frames_ = 0;
+  std::atomic<double> audio_speaker_energy_{0.0};
+  std::atomic<std::uint64_t> audio_speaker_frames_{0};
   std::atomic<int> audio_active_{-1};
   std::atomic<int> audio_fade_from_{-1};
   std::atomic<std::uint64_t> switches_done_{0};

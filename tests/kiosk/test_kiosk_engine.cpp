@@ -347,3 +347,31 @@ TEST_CASE(
   CHECK(peak <= transducer);
   CHECK(peak > 0.5 * transducer);  // the sweep did play, limited to the ceiling
 }
+
+TEST_CASE("engine: the staff's exposure figure is the mean square of what went to the speaker",
+          "[kiosk][safety]") {
+  KioskEngine engine(Options());
+  engine.SetAudioRunning(true);
+  std::vector<float> audio;
+  std::int64_t t = 0;
+  engine.Tick(t);
+  for (int i = 0; i < 300; ++i) {  // a stroke at full pressure
+    engine.OnPen(Pen(t, 400 + 4.0 * i, 500, true));
+    engine.Tick(t);
+    const auto block = RenderBlocks(engine, 1);
+    audio.insert(audio.end(), block.begin(), block.end());
+    t += kBlockNs;
+  }
+  engine.OnPen(Pen(t, 1600, 500, false));
+  const auto tail = RenderBlocks(engine, 50);
+  audio.insert(audio.end(), tail.begin(), tail.end());
+  t += 50 * kBlockNs;
+  engine.Tick(t);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < audio.size(); i += 2) sum += double(audio[i]) * audio[i];
+  const double expected_db = 10.0 * std::log10(sum / static_cast<double>(audio.size() / 2));
+  REQUIRE(engine.exposure().LastHourDb());
+  CHECK(*engine.exposure().LastHourDb() == Approx(expected_db).margin(0.01));
+  CHECK(expected_db > -80.0);                // the stroke was heard
+  REQUIRE(engine.exposure().LastVisitDb());  // the visit is still going on (no idle yet)
+}
