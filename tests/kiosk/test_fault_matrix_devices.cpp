@@ -29,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "fake_token_board.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
@@ -109,37 +110,8 @@ class ChipSource final : public platform::GpioEventSource {
   int fds_[2] = {-1, -1};
 };
 
-// The MCP2221A token board: answers SET SRAM and GET GPIO; `present` false = unplugged.
-struct TokenBoard {
-  std::atomic<bool> present{true};
-  std::array<std::atomic<int>, 4> level{1, 1, 1, 1};  // active low: 0 = token on the pad
-};
-
-class TokenBoardHid final : public platform::HidTransport {
- public:
-  explicit TokenBoardHid(TokenBoard& board) : board_(&board) {}
-  bool Write(const platform::Mcp2221Report& report) override {
-    if (!board_->present) return false;
-    last_ = report[0];
-    return true;
-  }
-  bool Read(platform::Mcp2221Report& out, int /*timeout_ms*/) override {
-    if (!board_->present) return false;
-    out = platform::Mcp2221Report{};
-    out[0] = last_;
-    if (last_ == platform::kMcp2221CmdGetGpio) {
-      for (std::size_t p = 0; p < 4; ++p) {
-        out[2 + 2 * p] = static_cast<std::uint8_t>(board_->level[p].load());
-        out[3 + 2 * p] = 1;  // input
-      }
-    }
-    return true;
-  }
-
- private:
-  TokenBoard* board_;
-  std::uint8_t last_ = 0;
-};
+using sas::test::TokenBoard;
+using sas::test::TokenBoardHid;
 
 enum class Switches { kGpio, kGpioMissing, kMcp2221, kMcp2221Absent };
 
