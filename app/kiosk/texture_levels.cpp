@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iterator>
 #include <numbers>
+#include <random>
 #include <span>
 #include <stdexcept>
 
@@ -63,6 +64,64 @@ VisitorStroke MakeStroke(const char* name, double x0, double y0, double angle_de
   stroke.pen.tilt_deg = tilt_deg;
   stroke.pen.hover_s = kHoverS;
   return stroke;
+}
+
+std::vector<VisitorStroke> VisitorPopulation(int count, std::uint32_t seed, double duration_scale) {
+  // Our own draws from std::mt19937 (its sequence is fixed by the standard; the standard
+  // distributions are not, so they are not used).
+  std::mt19937 rng(seed);
+  const auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
+  };
+  const GestureMapping mapping;
+  const double rub_tilt = TiltFromWidthDeg(mapping.rub_width_mm, mapping);
+  const double pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
+  const double width_mm = pitch_mm * kScreenWidthPx, height_mm = pitch_mm * kScreenHeightPx;
+  std::vector<VisitorStroke> strokes;
+  for (int i = 0; i < count; ++i) {
+    VisitorStroke stroke;
+    const int style = static_cast<int>(rng() % 3);
+    const double speed = std::exp(uniform(std::log(20.0), std::log(400.0)));
+    const double pressure = uniform(0.1, 0.9);
+    double duration = uniform(0.3, 1.5) * duration_scale;
+    double tilt = 0.0;
+    if (style == 0) {
+      stroke.name = "scrape";
+      tilt = uniform(0.0, rub_tilt * 0.999);
+    } else if (style == 1) {
+      stroke.name = "rub";
+      tilt = uniform(rub_tilt, 60.0);
+    } else {
+      stroke.name = "roll";
+      tilt = uniform(0.0, 60.0);
+      stroke.pen.style = synth::ProbeStyle::kRoll;
+    }
+    // Direction and start: the stroke must stay on the screen's middle 90 %; too long, it is
+    // shortened (a visitor's hand reaches the edge and lifts).
+    const double angle = uniform(0.0, 2.0 * std::numbers::pi);
+    const double dx = std::cos(angle), dy = std::sin(angle);
+    const double room_x = 0.9 * width_mm, room_y = 0.9 * height_mm;
+    double length = speed * duration;
+    const double fit = std::min(std::fabs(dx) > 1e-9 ? room_x / std::fabs(dx) : 1e300,
+                                std::fabs(dy) > 1e-9 ? room_y / std::fabs(dy) : 1e300);
+    if (length > fit) {
+      length = fit;
+      duration = length / speed;
+    }
+    const double span_x = room_x - length * std::fabs(dx), span_y = room_y - length * std::fabs(dy);
+    const double x0_mm = 0.05 * width_mm + uniform(0.0, span_x) + (dx < 0 ? length * -dx : 0.0);
+    const double y0_mm = 0.05 * height_mm + uniform(0.0, span_y) + (dy < 0 ? length * -dy : 0.0);
+    stroke.pen.x0 = x0_mm / width_mm;
+    stroke.pen.y0 = y0_mm / height_mm;
+    stroke.pen.x1 = (x0_mm + length * dx) / width_mm;
+    stroke.pen.y1 = (y0_mm + length * dy) / height_mm;
+    stroke.pen.duration_s = duration;
+    stroke.pen.pressure = pressure;
+    stroke.pen.tilt_deg = tilt;
+    stroke.pen.hover_s = kHoverS;
+    strokes.push_back(stroke);
+  }
+  return strokes;
 }
 
 VisitorStroke PlacedStroke(const char* name, int place, double speed_mm_s, double pressure,

@@ -43,6 +43,7 @@
 // so the per-stroke correction (up to stroke_gain.h's limit) makes up the difference stroke by
 // stroke. Offline only (texture_generator, tests).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,14 @@ inline constexpr double kHoverS = 0.04;
 // at the display's pixel pitch.
 VisitorStroke MakeStroke(const char* name, double x0, double y0, double angle_deg,
                          double speed_mm_s, double pressure, double tilt_deg);
+
+// A population of visitor strokes, drawn from `seed` (the same strokes on every machine): style
+// scrape, rub or roll (a third each; scrape with the pen upright to the rub tilt, rub tilted from
+// there to 60°, roll at any tilt), speed 20–400 mm/s log-uniform, pressure 0.1–0.9, 0.3–1.5 s long
+// (shortened where the screen is too small for it), at a random place in a random direction.
+// `duration_scale` shortens every stroke (a quick run of the same population).
+std::vector<VisitorStroke> VisitorPopulation(int count, std::uint32_t seed,
+                                             double duration_scale = 1.0);
 
 struct LevelMeasurement {
   double global_sound_gain_db = 0.0;  // on top of the texture's gains
