@@ -22,6 +22,12 @@ void SafetyStage::Prepare(double sample_rate_hz, double release_s) {
       taps_[static_cast<std::size_t>(p)][static_cast<std::size_t>(k)] = sinc * window;
     }
   }
+  taps_abs_sum_ = 1.0;
+  for (int p = 1; p < 4; ++p) {
+    double sum = 0.0;
+    for (const double h : taps_[static_cast<std::size_t>(p)]) sum += std::fabs(h);
+    taps_abs_sum_ = std::max(taps_abs_sum_, sum);
+  }
   Reset();
 }
 
@@ -32,6 +38,13 @@ void SafetyStage::SetCeilings(double speaker, double transducer) {
   };
   channel_[0].ceiling = sane(speaker);
   channel_[1].ceiling = sane(transducer);
+  for (auto& ch : channel_) {
+    ch.quiet_level = ch.ceiling / taps_abs_sum_;
+    // Bounds stored under the old ceiling stay valid upper bounds; the slow path looks at them
+    // again until the look-ahead has passed.
+    ch.quiet_run = 0;
+    ch.since_limited = 0;
+  }
 }
 
 void SafetyStage::Reset() {
@@ -40,6 +53,8 @@ void SafetyStage::Reset() {
     ch.bound.fill(0.0);
     ch.gain = 1.0;
     ch.min_gain = 1.0;
+    ch.quiet_run = 0;
+    ch.since_limited = 0;
   }
   n_ = 0;
 }
@@ -54,21 +69,29 @@ double SafetyStage::TakeMinGain(int channel) {
 double SafetyStage::Step(Channel& ch, double in) {
   constexpr std::uint32_t kMask = kRing - 1;
   const auto at = [](std::uint32_t i) { return static_cast<std::size_t>(i & kMask); };
-  ch.x[at(n_)] = std::isfinite(in) ? in : 0.0;
+  const double x = std::isfinite(in) ? in : 0.0;
+  ch.x[at(n_)] = x;
+  ch.quiet_run = std::fabs(x) <= ch.quiet_level ? std::min(ch.quiet_run + 1, 1u << 30) : 0;
   // The bound for m = n - h, whose interpolation window x(m - h + 1 .. m + h) is now complete.
   constexpr int kHalf = kTaps / 2;
   const std::uint32_t m = n_ - kHalf;
-  double bound = std::fabs(ch.x[at(m)]);
-  for (int p = 1; p < 4; ++p) {
-    const auto& taps = taps_[static_cast<std::size_t>(p)];
-    double s = 0.0;
-    for (int k = 0; k < kTaps; ++k) {
-      s += taps[static_cast<std::size_t>(k)] *
-           ch.x[at(m - (kHalf - 1) + static_cast<std::uint32_t>(k))];
+  double bound = 0.0;
+  if (ch.quiet_run >= static_cast<std::uint32_t>(kTaps)) {
+    bound = ch.ceiling;  // ≥ quiet_level · S ≥ the true bound: needs no gain
+  } else {
+    bound = std::fabs(ch.x[at(m)]);
+    for (int p = 1; p < 4; ++p) {
+      const auto& taps = taps_[static_cast<std::size_t>(p)];
+      double s = 0.0;
+      for (int k = 0; k < kTaps; ++k) {
+        s += taps[static_cast<std::size_t>(k)] *
+             ch.x[at(m - (kHalf - 1) + static_cast<std::uint32_t>(k))];
+      }
+      bound = std::max(bound, std::fabs(s));
     }
-    bound = std::max(bound, std::fabs(s));
   }
   ch.bound[at(m)] = bound;
+  ch.since_limited = bound > ch.ceiling ? 0 : std::min(ch.since_limited + 1, 1u << 30);
   // The sample going out, o = m - kLookahead: needs are known up to o + kLookahead.
   const std::uint32_t o = m - kLookahead;
   const double c = ch.ceiling;
@@ -76,11 +99,17 @@ double SafetyStage::Step(Channel& ch, double in) {
     const double b = ch.bound[at(i)];
     return b > c ? c / b : 1.0;
   };
-  double g = ch.gain + release_step_;
+  double g = std::min(ch.gain + release_step_, 1.0);
+  constexpr int kReach = kHalf + kHold;
+  if (ch.since_limited > static_cast<std::uint32_t>(kLookahead + kReach)) {
+    // No bound over the ceiling from o - kReach to o + kLookahead: only the release moves.
+    ch.gain = g;
+    ch.min_gain = std::min(ch.min_gain, g);
+    return g * ch.x[at(o)];
+  }
   // Hard part: every interpolated point this sample takes part in (m' in o - h .. o + h - 1),
   // widened by kHold on each side so that the gain is flat across an interpolation window (a gain
   // changing within the window makes inter-sample peaks of its own).
-  constexpr int kReach = kHalf + kHold;
   for (int j = -kReach; j < kReach; ++j) g = std::min(g, need(o + static_cast<std::uint32_t>(j)));
   // Ramp part: reductions further ahead start fading in now.
   for (int j = kReach; j <= kLookahead; ++j) {

@@ -53,10 +53,17 @@ class SafetyStage {
     std::array<double, kRing> bound{};
     double gain = 1.0;
     double min_gain = 1.0;
+    // Fast path: while every sample of an interpolation window is at most ceiling / S (S the
+    // largest Σ|h_p|), its points cannot exceed the ceiling and the 48 multiply-adds are skipped;
+    // while no need < 1 is in reach, so are the gain's minimum searches.
+    double quiet_level = 1.0;
+    std::uint32_t quiet_run = 0;      // consecutive input samples at most quiet_level
+    std::uint32_t since_limited = 0;  // bounds since the last one over the ceiling
   };
   double Step(Channel& ch, double in);
 
   std::array<std::array<double, kTaps>, 4> taps_{};  // h_p, phase 0 unused
+  double taps_abs_sum_ = 1.0;                        // S = max_p Σ_k |h_p[k]| (≥ 1)
   std::array<Channel, 2> channel_{};
   std::uint32_t n_ = 0;  // input samples taken
   double release_step_ = 1.0 / 2400.0;
