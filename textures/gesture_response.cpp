@@ -24,7 +24,6 @@
 namespace {
 
 using sas::kiosk::ResponseCell;
-using sas::kiosk::StyleName;
 
 const cv::Scalar kStyleColour[3] = {{40, 90, 220}, {60, 160, 40}, {200, 110, 30}};  // BGR
 constexpr int kPanelW = 440, kPanelH = 250, kLeft = 60, kRight = 14, kTop = 30, kBottom = 40;
@@ -103,8 +102,8 @@ void WritePlot(const std::string& path, const std::vector<std::string>& names,
   int x = 10;
   for (std::size_t s = 0; s < sas::kiosk::kResponseStyles.size(); ++s) {
     cv::line(image, {x, 20}, {x + 30, 20}, kStyleColour[s], 2, cv::LINE_AA);
-    cv::putText(image, StyleName(sas::kiosk::kResponseStyles[s]), {x + 36, 25},
-                cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1, cv::LINE_AA);
+    cv::putText(image, sas::synth::ProbeStyleName(sas::kiosk::kResponseStyles[s]).data(),
+                {x + 36, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1, cv::LINE_AA);
     x += 120;
   }
   cv::putText(image, "thick: pressure 0.8, thin: 0.2", {x + 20, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
@@ -180,8 +179,9 @@ int main(int argc, char** argv) {
             "| centroid, Hz |\n|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
         std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f |\n",
-                      StyleName(c.stroke.style), c.stroke.speed_mm_s, c.stroke.pressure,
-                      c.response.sound_db, c.response.haptic_db, c.response.centroid_hz);
+                      sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
+                      c.stroke.pressure, c.response.sound_db, c.response.haptic_db,
+                      c.response.centroid_hz);
         md << line;
       }
       md << "\n";

@@ -15,7 +15,6 @@ ExposureMeter::ExposureMeter() : ring_(static_cast<std::size_t>(kHourS) + 2) {}
 void ExposureMeter::Update(std::int64_t now_ns, double energy, std::uint64_t frames,
                            bool in_visit) {
   latest_ = {now_ns, energy, frames};
-  have_latest_ = true;
   if (count_ == 0 ||
       now_ns - ring_[(next_ + ring_.size() - 1) % ring_.size()].time_ns >= kSnapshotNs) {
     ring_[next_] = latest_;
@@ -38,7 +37,7 @@ std::optional<double> ExposureMeter::Leq(const Snapshot& from, const Snapshot& t
 }
 
 std::optional<double> ExposureMeter::LastHourDb() const {
-  if (!have_latest_ || count_ == 0) return std::nullopt;
+  if (count_ == 0) return std::nullopt;
   // The oldest snapshot still inside the hour (the ring holds a little over an hour).
   const std::int64_t limit = latest_.time_ns - static_cast<std::int64_t>(kHourS * 1e9);
   const std::size_t oldest = (next_ + ring_.size() - count_) % ring_.size();

@@ -40,8 +40,7 @@ class ExposureMeter {
 
   std::vector<Snapshot> ring_;  // one a second, oldest overwritten
   std::size_t next_ = 0, count_ = 0;
-  Snapshot latest_{};
-  bool have_latest_ = false;
+  Snapshot latest_{};  // valid once count_ > 0
   bool in_visit_ = false;
   Snapshot visit_start_{}, visit_end_{};
   bool have_visit_ = false;

@@ -23,10 +23,6 @@
 namespace sas::kiosk {
 namespace {
 
-// The kiosk's voice path (kiosk_engine.cpp): material, relief, a 2.4 s take at 120 Hz as the
-// headless visit records it, 100 ms per row, rows as bands filling the screen.
-constexpr const char* kVoiceMaterialName = "plastic";
-constexpr double kVoiceReliefMm = 0.5;
 constexpr double kTiltRubDeg = 40.0;
 constexpr double kLandingMps = 0.005;
 
@@ -100,9 +96,15 @@ void Spectrum(const std::vector<float>& x, double fs_hz, StrokeResponse* out) {
   }
   cv::Mat spectrum;
   cv::dft(in, spectrum, cv::DFT_COMPLEX_OUTPUT);
+  // Band b holds the bins from its lower edge up to the next band's: edges at centre · 2^(-1/6).
+  std::array<double, kThirdOctaveBands + 1> edge_hz{};
+  for (int b = 0; b <= kThirdOctaveBands; ++b) {
+    edge_hz[static_cast<std::size_t>(b)] = BandCentreHz(b) * std::pow(2.0, -1.0 / 6.0);
+  }
   std::array<double, kThirdOctaveBands> band{};
   double weighted = 0.0, total = 0.0, in_bands = 0.0;
   const double bin_hz = fs_hz / n;
+  std::size_t at = 0;  // the band bin k falls in (bins rise, so it only moves up)
   for (int k = 1; k <= n / 2; ++k) {
     const cv::Vec2d c = spectrum.at<cv::Vec2d>(0, k);
     const double p = c[0] * c[0] + c[1] * c[1];
@@ -111,12 +113,10 @@ void Spectrum(const std::vector<float>& x, double fs_hz, StrokeResponse* out) {
       weighted += f * p;
       total += p;
     }
-    for (int b = 0; b < kThirdOctaveBands; ++b) {
-      const double centre = BandCentreHz(b);
-      if (f >= centre * std::pow(2.0, -1.0 / 6.0) && f < centre * std::pow(2.0, 1.0 / 6.0)) {
-        band[static_cast<std::size_t>(b)] += p;
-        in_bands += p;
-      }
+    while (at < band.size() && f >= edge_hz[at + 1]) ++at;
+    if (at < band.size() && f >= edge_hz[at]) {
+      band[at] += p;
+      in_bands += p;
     }
   }
   out->centroid_hz = total > 0.0 ? weighted / total : 0.0;
@@ -127,18 +127,6 @@ void Spectrum(const std::vector<float>& x, double fs_hz, StrokeResponse* out) {
 }
 
 }  // namespace
-
-const char* StyleName(synth::ProbeStyle style) {
-  switch (style) {
-    case synth::ProbeStyle::kRub:
-      return "rub";
-    case synth::ProbeStyle::kRoll:
-      return "roll";
-    case synth::ProbeStyle::kScrape:
-    default:
-      return "scrape";
-  }
-}
 
 std::vector<ResponseSurface> LoadResponseSurfaces(const std::string& textures_dir) {
   const std::vector<std::string> dirs = MaterialSearchDirs("");
@@ -152,19 +140,17 @@ std::vector<ResponseSurface> LoadResponseSurfaces(const std::string& textures_di
     s.material = FindMaterial(loaded.file.material, dirs).params;
     out.push_back(std::move(s));
   }
+  // The kiosk's voice path (kiosk_engine.h) on a 2.4 s take at 120 Hz, as the headless visit
+  // records it.
   constexpr double kFs = 48000.0;
   const std::vector<float> voice = SynthesiseVoice(kFs, 2.4, 120.0);
-  surface::SoundImageOptions image;
-  image.sample_rate_hz = kFs;
-  image.samples_per_row = 4800;
-  const int rows = static_cast<int>((voice.size() + 4799) / 4800);
-  image.row_height_px = std::max(1, 1080 / rows);
   ResponseSurface v;
   v.name = "voice";
   v.field = std::make_shared<const surface::HeightField>(surface::SoundToHeightField(
-      std::span<const float>(voice), image, kVoiceReliefMm,
+      std::span<const float>(voice),
+      VoiceImageOptions(kFs, KioskConfig{}.record_max_duration_s, voice.size()), kVoiceReliefMm,
       surface::DisplayGeometry{}.pixel_pitch_mm(), std::pmr::get_default_resource()));
-  v.material = FindMaterial(kVoiceMaterialName, dirs).params;
+  v.material = FindMaterial(kVoiceMaterial, dirs).params;
   out.push_back(std::move(v));
   return out;
 }
@@ -237,6 +223,7 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
     }
     return nullptr;
   };
+  const auto name = [](synth::ProbeStyle style) { return synth::ProbeStyleName(style).data(); };
   std::vector<ResponseFailure> failures;
   char text[256];
   char key[160];
@@ -256,28 +243,28 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
         std::snprintf(text, sizeof text,
                       "%s, %s, p %.1f: speed %.0f -> %.0f mm/s raises the sound by %.1f dB, "
                       "needs %.1f",
-                      surface_name.c_str(), StyleName(style), pressure, slow, fast,
+                      surface_name.c_str(), name(style), pressure, slow, fast,
                       b->sound_db - a->sound_db, limits.speed_sound_db);
         std::snprintf(condition, sizeof condition, "p%.1f", pressure);
-        fail("speed-sound", StyleName(style), condition);
+        fail("speed-sound", name(style), condition);
       }
       if (!(b->centroid_hz >= limits.speed_centroid_ratio * a->centroid_hz)) {
         std::snprintf(text, sizeof text,
                       "%s, %s, p %.1f: speed %.0f -> %.0f mm/s moves the centroid %.0f -> %.0f "
                       "Hz (x%.2f), needs x%.2f",
-                      surface_name.c_str(), StyleName(style), pressure, slow, fast, a->centroid_hz,
+                      surface_name.c_str(), name(style), pressure, slow, fast, a->centroid_hz,
                       b->centroid_hz, b->centroid_hz / std::max(a->centroid_hz, 1e-9),
                       limits.speed_centroid_ratio);
         std::snprintf(condition, sizeof condition, "p%.1f", pressure);
-        fail("speed-centroid", StyleName(style), condition);
+        fail("speed-centroid", name(style), condition);
       }
       if (!(b->haptic_db - a->haptic_db > limits.speed_haptic_db)) {
         std::snprintf(text, sizeof text,
                       "%s, %s, p %.1f: speed %.0f -> %.0f mm/s changes the vibration by %.1f dB",
-                      surface_name.c_str(), StyleName(style), pressure, slow, fast,
+                      surface_name.c_str(), name(style), pressure, slow, fast,
                       b->haptic_db - a->haptic_db);
         std::snprintf(condition, sizeof condition, "p%.1f", pressure);
-        fail("speed-haptic", StyleName(style), condition);
+        fail("speed-haptic", name(style), condition);
       }
     }
     for (const double speed : kResponseSpeedsMmS) {
@@ -288,10 +275,10 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
         std::snprintf(text, sizeof text,
                       "%s, %s, %.0f mm/s: pressure %.1f -> %.1f raises the sound by %.1f dB, "
                       "needs %.1f",
-                      surface_name.c_str(), StyleName(style), speed, light, firm,
+                      surface_name.c_str(), name(style), speed, light, firm,
                       b->sound_db - a->sound_db, limits.pressure_sound_db);
         std::snprintf(condition, sizeof condition, "%.0fmm/s", speed);
-        fail("pressure-sound", StyleName(style), condition);
+        fail("pressure-sound", name(style), condition);
       }
     }
   }
@@ -306,11 +293,11 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
           if (!(d >= limits.style_distance_db)) {
             std::snprintf(text, sizeof text,
                           "%s, %.0f mm/s, p %.1f: %s and %s spectra differ by %.1f dB, needs %.1f",
-                          surface_name.c_str(), speed, pressure, StyleName(kResponseStyles[i]),
-                          StyleName(kResponseStyles[j]), d, limits.style_distance_db);
+                          surface_name.c_str(), speed, pressure, name(kResponseStyles[i]),
+                          name(kResponseStyles[j]), d, limits.style_distance_db);
             std::snprintf(condition, sizeof condition, "%.0fmm/s,p%.1f", speed, pressure);
             const std::string pair =
-                std::string(StyleName(kResponseStyles[i])) + "-" + StyleName(kResponseStyles[j]);
+                std::string(name(kResponseStyles[i])) + "-" + name(kResponseStyles[j]);
             fail("style-spectra", pair.c_str(), condition);
           }
         }

@@ -106,6 +106,4 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
 // How many relations CheckResponseGrid checks on one surface.
 int ResponseRelationCount();
 
-const char* StyleName(synth::ProbeStyle style);
-
 }  // namespace sas::kiosk

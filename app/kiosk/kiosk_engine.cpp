@@ -31,9 +31,6 @@ namespace fs = std::filesystem;
 // Token order: the paper's §5.2 order of the four textures.
 const std::vector<std::string> kTextureKeys = {"bubble_wrap", "broken_glass", "wooden_board",
                                                "cracked_ground"};
-constexpr const char* kVoiceMaterial = "plastic";
-constexpr double kVoiceReliefMm = 0.5;
-constexpr double kVoiceWidthMm = 0.5;
 // Impulse of a bubble's pop at strength 1 (N·s): a few tenths of a metre per second given to the
 // probe, well above a tap's landing speed, so a pop stands out from the rubbing around it.
 constexpr double kPopImpulseNs = 0.002;
@@ -602,20 +599,25 @@ void KioskEngine::FinishRecording(std::int64_t now_ns) {
   session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9, outcome);
 }
 
-RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/,
-                                              std::span<const float> samples) {
-  const double rate_hz = options_.config.sample_rate_hz;
+surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration_s,
+                                             std::size_t sample_count) {
   surface::SoundImageOptions image;
   image.sample_rate_hz = rate_hz;
   image.samples_per_row = static_cast<int>(std::lround(0.1 * rate_hz));
-  image.max_duration_s = options_.config.record_max_duration_s;
+  image.max_duration_s = max_duration_s;
   const auto rows = static_cast<int>(
-      (std::min(samples.size(),
-                static_cast<std::size_t>(std::lround(image.max_duration_s * rate_hz))) +
+      (std::min(sample_count, static_cast<std::size_t>(std::lround(max_duration_s * rate_hz))) +
        static_cast<std::size_t>(image.samples_per_row) - 1) /
       static_cast<std::size_t>(image.samples_per_row));
   // Rows as bands (paper figure 3) so the image has the screen's shape.
   image.row_height_px = std::max(1, 1080 / std::max(1, rows));
+  return image;
+}
+
+RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/,
+                                              std::span<const float> samples) {
+  const surface::SoundImageOptions image = VoiceImageOptions(
+      options_.config.sample_rate_hz, options_.config.record_max_duration_s, samples.size());
   // The sound image is the recording row by row, and the field is that image as heights: both
   // are the visitor's voice, so they are made (and released, zeroed) in memory a core dump
   // leaves out. They are constructed in place, never assigned (height_field.h).

@@ -48,6 +48,7 @@
 #include "platform/device_status.h"
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
+#include "surface/sound_image.h"
 #include "surface/texture_set.h"
 #include "synth/safety_stage.h"
 #include "synth/scene.h"
@@ -102,6 +103,17 @@ struct EngineAudioStats {
 std::vector<std::string> FindTextureFiles();
 // The kiosk textures' names in token order ("bubble_wrap", "broken_glass", ...).
 std::vector<std::string> KioskTextureNames();
+
+// The voice surface: a recording becomes a sound image (100 ms per row, rows as bands filling the
+// 1080-pixel screen, paper figure 3) read as heights kVoiceReliefMm high, scratched with the
+// kVoiceMaterial material and, without pen tilt, a kVoiceWidthMm wide scrape.
+inline constexpr const char* kVoiceMaterial = "plastic";
+inline constexpr double kVoiceReliefMm = 0.5;
+inline constexpr double kVoiceWidthMm = 0.5;
+// The sound-image options for a recording of `sample_count` samples at `rate_hz`, of which at
+// most `max_duration_s` is used.
+surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration_s,
+                                             std::size_t sample_count);
 // textures/<name>/texture.toml for kiosk texture `name`, from the first data folder holding it
 // (the order above); "" when `name` is no kiosk texture or no folder holds it.
 std::string FindTextureFile(const std::string& name);

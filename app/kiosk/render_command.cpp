@@ -154,9 +154,7 @@ struct RenderCli {
   // After a successful parse: the choices CLI11 checked, and the cross-option rule.
   void Finish(RenderOptions& options) const {
     options.format = format == "pcm24" ? surface::WavFormat::kPcm24 : surface::WavFormat::kFloat32;
-    if (style == "scrape") options.style = synth::ProbeStyle::kScrape;
-    if (style == "rub") options.style = synth::ProbeStyle::kRub;
-    if (style == "roll") options.style = synth::ProbeStyle::kRoll;
+    options.style = synth::ParseProbeStyle(style);  // "auto": none
     if (app.count("--sweep-mps") > 0) {
       if (!IsPassiveSweep(options.gesture)) {
         throw RenderError("--sweep-mps applies to --gesture \"passive sweep\" only");

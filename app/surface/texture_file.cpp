@@ -199,12 +199,8 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
   t.probe.penetration_mm =
       check.Number(probe, probe.source(), "probe.", "penetration_mm", 0.0, 10.0);
   const std::string style = check.String(probe, probe.source(), "probe.", "style");
-  if (style == "scrape") {
-    t.probe.style = synth::ProbeStyle::kScrape;
-  } else if (style == "rub") {
-    t.probe.style = synth::ProbeStyle::kRub;
-  } else if (style == "roll") {
-    t.probe.style = synth::ProbeStyle::kRoll;
+  if (const auto parsed = synth::ParseProbeStyle(style)) {
+    t.probe.style = *parsed;
   } else {
     check.Fail(probe.get("style")->source(), "probe.style",
                "'" + style + "' is not scrape, rub or roll");

@@ -4,6 +4,8 @@
 // `frame_offset` so the command takes effect on the exact sample it belongs to.
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 namespace sas::synth {
 
@@ -12,6 +14,25 @@ enum class ProbeStyle : std::uint8_t {
   kRub,     // large width, friction-dominated
   kRoll,    // a ball of radius r follows the envelope of the profile
 };
+
+// The styles' names in files, command lines and reports: "scrape", "rub", "roll".
+constexpr std::string_view ProbeStyleName(ProbeStyle style) {
+  switch (style) {
+    case ProbeStyle::kRub:
+      return "rub";
+    case ProbeStyle::kRoll:
+      return "roll";
+    case ProbeStyle::kScrape:
+    default:
+      return "scrape";
+  }
+}
+constexpr std::optional<ProbeStyle> ParseProbeStyle(std::string_view name) {
+  for (const ProbeStyle style : {ProbeStyle::kScrape, ProbeStyle::kRub, ProbeStyle::kRoll}) {
+    if (name == ProbeStyleName(style)) return style;
+  }
+  return std::nullopt;
+}
 
 struct ProbeCommand {
   std::uint32_t frame_offset = 0;  // sample index within the block being processed

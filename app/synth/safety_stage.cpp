@@ -52,18 +52,10 @@ void SafetyStage::Reset() {
     ch.x.fill(0.0);
     ch.bound.fill(0.0);
     ch.gain = 1.0;
-    ch.min_gain = 1.0;
     ch.quiet_run = 0;
     ch.since_limited = 0;
   }
   n_ = 0;
-}
-
-double SafetyStage::TakeMinGain(int channel) {
-  Channel& ch = channel_[channel & 1];
-  const double g = ch.min_gain;
-  ch.min_gain = 1.0;
-  return g;
 }
 
 double SafetyStage::Step(Channel& ch, double in) {
@@ -104,7 +96,6 @@ double SafetyStage::Step(Channel& ch, double in) {
   if (ch.since_limited > static_cast<std::uint32_t>(kLookahead + kReach)) {
     // No bound over the ceiling from o - kReach to o + kLookahead: only the release moves.
     ch.gain = g;
-    ch.min_gain = std::min(ch.min_gain, g);
     return g * ch.x[at(o)];
   }
   // Hard part: every interpolated point this sample takes part in (m' in o - h .. o + h - 1),
@@ -121,7 +112,6 @@ double SafetyStage::Step(Channel& ch, double in) {
   }
   g = std::min(g, 1.0);
   ch.gain = g;
-  ch.min_gain = std::min(ch.min_gain, g);
   return g * ch.x[at(o)];
 }
 

@@ -41,10 +41,6 @@ class SafetyStage {
   // earlier, limited.
   void Process(float* frame);
 
-  double ceiling(int channel) const { return channel_[channel & 1].ceiling; }
-  // Smallest gain applied since the last call (1 = never limited): for meters and tests.
-  double TakeMinGain(int channel);
-
  private:
   static constexpr int kRing = 64;  // ≥ kDelayFrames + kTaps, a power of two
   struct Channel {
@@ -52,7 +48,6 @@ class SafetyStage {
     std::array<double, kRing> x{};
     std::array<double, kRing> bound{};
     double gain = 1.0;
-    double min_gain = 1.0;
     // Fast path: while every sample of an interpolation window is at most ceiling / S (S the
     // largest Σ|h_p|), its points cannot exceed the ceiling and the 48 multiply-adds are skipped;
     // while no need < 1 is in reach, so are the gain's minimum searches.

@@ -24,11 +24,11 @@
 #include <functional>
 #include <thread>
 
-#include "fake_token_board.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
+#include "kiosk_test_fakes.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/fake_audio_backend.h"
 #include "platform/common/clock.h"
@@ -216,14 +216,7 @@ TEST_CASE(
   std::int64_t now = platform::MonotonicNowNs();
   std::vector<float> played_mark;
   const auto to_engine = [&](const platform::PenEvent& e) {
-    kiosk::PenInput input;
-    input.time_ns = e.time_ns;
-    input.x_px = e.x_px;
-    input.y_px = e.y_px;
-    input.tip_down = e.tip_down && e.in_proximity;
-    input.pressure = input.tip_down ? e.pressure : 0.0;
-    input.has_tilt = true;
-    engine.OnPen(input);
+    engine.OnPen(sas::test::PenInputFromTablet(e));
   };
   // One pass of the loop and one audio block (2.67 ms of the fake device's thread).
   const auto pass = [&] {

@@ -8,6 +8,7 @@
 
 #include "kiosk/atomic_file.h"
 #include "kiosk/counters_file.h"
+#include "support/file_size_limit.h"
 #include "support/temp_dir.h"
 
 using sas::kiosk::UsageCounters;
@@ -34,26 +35,7 @@ UsageCounters Sample() {
   return counters;
 }
 
-// Limits the size of files this process may write, as a full disk would; SIGXFSZ is ignored so
-// write() fails with EFBIG instead of killing the test.
-class FileSizeLimit {
- public:
-  explicit FileSizeLimit(rlim_t bytes) {
-    getrlimit(RLIMIT_FSIZE, &saved_);
-    previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
-    rlimit limit = saved_;
-    limit.rlim_cur = bytes;
-    setrlimit(RLIMIT_FSIZE, &limit);
-  }
-  ~FileSizeLimit() {
-    setrlimit(RLIMIT_FSIZE, &saved_);
-    std::signal(SIGXFSZ, previous_handler_);
-  }
-
- private:
-  rlimit saved_{};
-  void (*previous_handler_)(int) = nullptr;
-};
+using sas::test::FileSizeLimit;
 
 }  // namespace
 

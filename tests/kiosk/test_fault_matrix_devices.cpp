@@ -29,11 +29,11 @@
 #include <thread>
 #include <vector>
 
-#include "fake_token_board.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
+#include "kiosk_test_fakes.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/background_audio_output.h"
@@ -207,14 +207,7 @@ struct Rig {
   void Pass() {
     now += 2667 * 1000;
     control->Step(now, [this](const platform::PenEvent& e) {
-      kiosk::PenInput input;
-      input.time_ns = e.time_ns;
-      input.x_px = e.x_px;
-      input.y_px = e.y_px;
-      input.tip_down = e.tip_down && e.in_proximity;
-      input.pressure = input.tip_down ? e.pressure : 0.0;
-      input.has_tilt = true;
-      engine->OnPen(input);
+      engine->OnPen(sas::test::PenInputFromTablet(e));
     });
     platform::FakeAudioStreamBackend::Pump(device, 1);
   }

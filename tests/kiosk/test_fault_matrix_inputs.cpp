@@ -24,18 +24,19 @@
 #include <string>
 #include <vector>
 
+#include "fault_matrix_support.h"
 #include "headless_demo.h"
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/command_line.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/gesture.h"
-#include "fault_matrix_support.h"
 #include "kiosk/impact_command.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/material_file.h"
 #include "kiosk/render_command.h"
 #include "live_kiosk.h"
 #include "platform/log/log.h"
+#include "support/file_size_limit.h"
 #include "support/temp_dir.h"
 #include "surface/cue_library.h"
 #include "surface/image_surface.h"
@@ -398,27 +399,7 @@ TEST_CASE(
 
 namespace {
 
-// Lowers this process's file-size limit for a scope.
-class FileSizeLimit {
- public:
-  explicit FileSizeLimit(rlim_t bytes) {
-    getrlimit(RLIMIT_FSIZE, &saved_);
-    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
-    rlimit lowered = saved_;
-    lowered.rlim_cur = bytes;
-    setrlimit(RLIMIT_FSIZE, &lowered);
-  }
-  ~FileSizeLimit() {
-    setrlimit(RLIMIT_FSIZE, &saved_);
-    std::signal(SIGXFSZ, old_handler_);
-  }
-  FileSizeLimit(const FileSizeLimit&) = delete;
-  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
-
- private:
-  rlimit saved_{};
-  void (*old_handler_)(int) = SIG_DFL;
-};
+using sas::test::FileSizeLimit;
 
 }  // namespace
 

@@ -150,7 +150,7 @@ TEST_CASE(
     REQUIRE(grid.size() == 18);
     // Every stroke was heard: the measurement itself is not silent.
     for (const auto& c : grid) {
-      INFO(surface.name << " " << sas::kiosk::StyleName(c.stroke.style) << " "
+      INFO(surface.name << " " << sas::synth::ProbeStyleName(c.stroke.style) << " "
                         << c.stroke.speed_mm_s << " mm/s p " << c.stroke.pressure);
       CHECK(c.response.sound_db > -140.0);
       CHECK(c.response.centroid_hz > 20.0);
