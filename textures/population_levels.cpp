@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
       measurement.strokes = strokes;
       measurement.global_sound_gain_db = defaults.sound_gain_db;
       measurement.global_haptic_gain_db = defaults.haptic_gain_db;
+      measurement.stroke_cap_lu = defaults.stroke_cap_lu;
       for (std::size_t o = 0; o < paths.size(); ++o) {
         if (o != t) measurement.other_textures.push_back(paths[o]);
       }

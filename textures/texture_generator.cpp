@@ -582,10 +582,12 @@ std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
       "textures' levels for it.\n";
   out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
   out += "rub_widths_mm = " + list(levels.rub_widths_mm, 0, widths, widths);
+  if (levels.styles() > 2)
+    out += "roll_widths_mm = " + list(levels.roll_widths_mm, 0, widths, widths);
   out += "speeds_mm_s = " + list(levels.speeds_mm_s, 0, speeds, speeds);
   out += "pressures = " + list(levels.pressures, 0, pressures, pressures);
-  const char* names[] = {"scrape", "rub"};
-  for (int style = 0; style < sas::surface::StrokeLevelTable::kStyles; ++style) {
+  const char* names[] = {"scrape", "rub", "roll"};
+  for (int style = 0; style < levels.styles(); ++style) {
     const std::size_t from = static_cast<std::size_t>(style) * per_style;
     out += std::string(names[style]) +
            "_sound_lufs = " + list(levels.sound_lufs, from, per_style, pressures);

@@ -166,6 +166,7 @@ const std::vector<KeySpec>& Schema() {
       {"gains", "sound_ceiling_db", Real(&KioskConfig::sound_ceiling_db, -40.0, 0.0)},
       {"gains", "haptic_ceiling_db", Real(&KioskConfig::haptic_ceiling_db, -40.0, 0.0)},
       {"gains", "low_vibration_db", Real(&KioskConfig::low_vibration_db, 0.0, 40.0)},
+      {"gains", "stroke_cap_lu", Real(&KioskConfig::stroke_cap_lu, 0.0, 40.0)},
       {"gains", "ambient_adaptive", Flag(&KioskConfig::ambient_adaptive)},
       {"gains", "ambient_min_db", Real(&KioskConfig::ambient_min_db, -20.0, 30.0)},
       {"gains", "ambient_max_db", Real(&KioskConfig::ambient_max_db, -20.0, 30.0)},

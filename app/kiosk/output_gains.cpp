@@ -21,6 +21,10 @@ synth::OutputParams KioskOutputParams(const KioskConfig& config,
   p.haptic_ceiling = FromDb(config.haptic_ceiling_db);
   p.low_vibration_gain = FromDb(-config.low_vibration_db);
   p.low_vibration = low_vibration;
+  if (config.stroke_cap_lu > 0.0) {
+    p.sound_level_cap = FromDb(kCalibratedSoundLufs + config.sound_gain_db + ambient_gain_db +
+                               config.stroke_cap_lu);
+  }
   return p;
 }
 

@@ -14,6 +14,12 @@
 
 namespace sas::kiosk {
 
+// The level the textures are calibrated to at their own [gains] (kiosk/texture_levels.h): the
+// mean loudness of the calibration strokes, LUFS. The stroke leveller's cap sits
+// KioskConfig::stroke_cap_lu above it plus the configured and ambient gains (as an RMS: for the
+// textures' spectra the two agree within a few dB).
+inline constexpr double kCalibratedSoundLufs = -36.0;
+
 synth::OutputParams KioskOutputParams(const KioskConfig& config,
                                       const surface::TextureGains& texture,
                                       double ambient_gain_db = 0.0, bool low_vibration = false);

@@ -29,7 +29,9 @@ void Locate(const std::vector<double>& axis, double x, bool log_axis, std::size_
 StrokeCorrection InterpolateLevels(const surface::StrokeLevelTable& table, synth::ProbeStyle style,
                                    double width_mm, double speed_mm_s, double pressure,
                                    LevelBlend sound_blend) {
-  const int s = style == synth::ProbeStyle::kRub ? 1 : 0;
+  const int s = style == synth::ProbeStyle::kRub                          ? 1
+                : style == synth::ProbeStyle::kRoll && table.styles() > 2 ? 2
+                                                                          : 0;
   const auto& widths = table.widths_mm(s);
   if (widths.empty() || table.speeds_mm_s.empty() || table.pressures.empty()) return {};
   const auto finite = [](double v) { return std::isfinite(v) ? v : 0.0; };

@@ -150,16 +150,22 @@ std::vector<VisitorStroke> CalibrationStrokes(const CalibrationGrid& grid) {
   const GestureMapping mapping;  // the kiosk engine's
   std::vector<VisitorStroke> strokes;
   int place = 0;
-  for (const bool rub : {false, true}) {
-    for (const double width : rub ? grid.rub_widths_mm : grid.scrape_widths_mm) {
+  const char* names[] = {"scrape", "rub", "roll"};
+  for (int style = 0; style < 3; ++style) {
+    const std::vector<double>& widths = style == 0   ? grid.scrape_widths_mm
+                                        : style == 1 ? grid.rub_widths_mm
+                                                     : grid.roll_widths_mm;
+    for (const double width : widths) {
       for (const double speed : grid.speeds_mm_s) {
         for (const double pressure : grid.pressures) {
           char name[64];
-          std::snprintf(name, sizeof name, "%s %.1f mm %.0f mm/s p%.2f", rub ? "rub" : "scrape",
-                        width, speed, pressure);
+          std::snprintf(name, sizeof name, "%s %.1f mm %.0f mm/s p%.2f", names[style], width, speed,
+                        pressure);
           for (int i = 0; i < grid.places; ++i) {
-            strokes.push_back(
-                PlacedStroke(name, place++, speed, pressure, TiltFromWidthDeg(width, mapping)));
+            VisitorStroke stroke =
+                PlacedStroke(name, place++, speed, pressure, TiltFromWidthDeg(width, mapping));
+            if (style == 2) stroke.pen.style = synth::ProbeStyle::kRoll;
+            strokes.push_back(std::move(stroke));
           }
         }
       }
@@ -210,6 +216,7 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
       measurement.global_sound_gain_db + gains.sound_gain_db - file.gains.sound_gain_db;
   options.config.haptic_gain_db =
       measurement.global_haptic_gain_db + gains.haptic_gain_db - file.gains.haptic_gain_db;
+  options.config.stroke_cap_lu = measurement.stroke_cap_lu;
   KioskEngine engine(options);
   if (!engine.texture_failures().empty()) throw RenderError(engine.texture_failures().front());
   VirtualVisit visit(engine);
@@ -272,7 +279,12 @@ TextureCalibration CalibrateTexture(const std::string& texture_toml, double targ
   for (int render = 0; render < kMaxCalibrationRenders; ++render) {
     strokes = MeasureStrokeLevels(texture_toml, gains, measurement);
     sound_applied = haptic_applied = 0.0;
-    const StrokeSetLevels set = Summarise(strokes);
+    // The gains from the sliding strokes only (scrape and rub come first; see CalibrationGrid).
+    const std::size_t sliding = static_cast<std::size_t>(grid.places) * grid.speeds_mm_s.size() *
+                                grid.pressures.size() *
+                                (grid.scrape_widths_mm.size() + grid.rub_widths_mm.size());
+    const StrokeSetLevels set = Summarise(std::vector<StrokeLevels>(
+        strokes.begin(), strokes.begin() + static_cast<std::ptrdiff_t>(sliding)));
     if (set.silent) throw RenderError(texture_toml + ": a calibration stroke is silent");
     const double sound_error = target_sound_lufs - set.sound_mean_lufs;
     const double haptic_error = std::min(target_haptic_rms_db - set.haptic_mean_rms_db,
@@ -300,6 +312,7 @@ TextureCalibration CalibrateTexture(const std::string& texture_toml, double targ
   haptic_applied += result.gains.haptic_gain_db - gains.haptic_gain_db;
   result.levels.scrape_widths_mm = grid.scrape_widths_mm;
   result.levels.rub_widths_mm = grid.rub_widths_mm;
+  result.levels.roll_widths_mm = grid.roll_widths_mm;
   result.levels.speeds_mm_s = grid.speeds_mm_s;
   result.levels.pressures = grid.pressures;
   for (const auto& levels : MeanOverPlaces(strokes, grid.places)) {

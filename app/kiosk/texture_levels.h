@@ -47,6 +47,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/output_gains.h"
 #include "kiosk/virtual_visit.h"
 #include "surface/texture_file.h"
 
@@ -81,6 +82,10 @@ struct VisitorStroke {
 struct CalibrationGrid {
   std::vector<double> scrape_widths_mm = {0.3, 0.9, 1.9};
   std::vector<double> rub_widths_mm = {2.1, 4.0, 6.0};
+  // Rolling (a ball following the relief, any tilt: the width sets the ball) is far quieter than
+  // sliding on the soft textures; its own rows let the kiosk match it across textures. Empty: no
+  // roll rows. The texture's [gains] come from scrape and rub only, so adding rows changes no gain.
+  std::vector<double> roll_widths_mm = {0.3, 2.1, 6.0};
   std::vector<double> speeds_mm_s = {40.0, 80.0, 160.0, 350.0};
   std::vector<double> pressures = {0.3, 0.45, 0.6};
   int places = 12;
@@ -123,6 +128,9 @@ std::vector<VisitorStroke> VisitorPopulation(int count, std::uint32_t seed,
 struct LevelMeasurement {
   double global_sound_gain_db = 0.0;  // on top of the texture's gains
   double global_haptic_gain_db = 0.0;
+  // The kiosk's stroke leveller (KioskConfig::stroke_cap_lu); off for the calibration, which
+  // measures the strokes' own levels.
+  double stroke_cap_lu = 0.0;
   std::vector<VisitorStroke> strokes = CalibrationStrokes();
   // Further textures loaded into the same engine, as in the kiosk (their [levels] tables join the
   // per-stroke reference); the measured texture is the engine's default one.
@@ -133,7 +141,7 @@ struct LevelMeasurement {
 // The loudest strokes' peaks lie up to ~26 dB above them on both channels (bubble wrap: -9.7 dBFS
 // sound, -11.1 dBFS transducer), so with the kiosk's default +12 dB / +6 dB only the sharpest
 // clicks pass the soft limiters' knee (-6 dBFS) while the average level is room-filling.
-inline constexpr double kTargetSoundLufs = -36.0;
+inline constexpr double kTargetSoundLufs = kCalibratedSoundLufs;
 inline constexpr double kTargetHapticRmsDb = -36.0;
 // Largest haptic gain the calibration gives a texture (see above).
 inline constexpr double kMaxHapticGainDb = 60.0;

@@ -105,30 +105,40 @@ std::vector<double> Numbers(const Checker& check, const toml::table& table, std:
 }
 
 StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
-  check.OnlyKeys(
-      table, "levels.",
-      {"scrape_widths_mm", "rub_widths_mm", "speeds_mm_s", "pressures", "scrape_sound_lufs",
-       "scrape_haptic_rms_db", "rub_sound_lufs", "rub_haptic_rms_db"});
+  check.OnlyKeys(table, "levels.",
+                 {"scrape_widths_mm", "rub_widths_mm", "speeds_mm_s", "pressures",
+                  "scrape_sound_lufs", "scrape_haptic_rms_db", "rub_sound_lufs",
+                  "rub_haptic_rms_db", "roll_widths_mm", "roll_sound_lufs", "roll_haptic_rms_db"});
   StrokeLevelTable levels;
   levels.scrape_widths_mm = Numbers(check, table, "scrape_widths_mm", 0.05, 50.0, 0);
   levels.rub_widths_mm = Numbers(check, table, "rub_widths_mm", 0.05, 50.0,
                                  levels.scrape_widths_mm.size(), "as many as scrape_widths_mm");
+  // Roll rows came later than scrape and rub: a table without them stays valid.
+  const bool roll = table.contains("roll_widths_mm") || table.contains("roll_sound_lufs") ||
+                    table.contains("roll_haptic_rms_db");
+  if (roll) {
+    levels.roll_widths_mm = Numbers(check, table, "roll_widths_mm", 0.05, 50.0,
+                                    levels.scrape_widths_mm.size(), "as many as scrape_widths_mm");
+  }
   levels.speeds_mm_s = Numbers(check, table, "speeds_mm_s", 1.0, 5000.0, 0);
   levels.pressures = Numbers(check, table, "pressures", 0.01, 1.0, 0);
   const std::pair<const char*, const std::vector<double>*> axes[] = {
       {"scrape_widths_mm", &levels.scrape_widths_mm},
       {"rub_widths_mm", &levels.rub_widths_mm},
+      {"roll_widths_mm", &levels.roll_widths_mm},
       {"speeds_mm_s", &levels.speeds_mm_s},
       {"pressures", &levels.pressures}};
   for (const auto& [key, axis] : axes) {
-    if (std::adjacent_find(axis->begin(), axis->end(), std::greater_equal<>()) != axis->end()) {
+    if (!axis->empty() &&
+        std::adjacent_find(axis->begin(), axis->end(), std::greater_equal<>()) != axis->end()) {
       check.Fail(table.get(key)->source(), std::string("levels.") + key,
                  "must be strictly increasing");
     }
   }
   const std::size_t per_style =
       levels.scrape_widths_mm.size() * levels.speeds_mm_s.size() * levels.pressures.size();
-  for (const char* style : {"scrape", "rub"}) {
+  for (const char* style : {"scrape", "rub", "roll"}) {
+    if (!roll && std::string_view(style) == "roll") break;
     for (const bool sound : {true, false}) {
       const std::string key = std::string(style) + (sound ? "_sound_lufs" : "_haptic_rms_db");
       const auto values = Numbers(check, table, key, -200.0, 20.0, per_style);

@@ -17,6 +17,7 @@
 //            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
 //            rub_haptic_rms_db = [...]   # widths x speeds x pressures values each, width-major:
 //            the texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
+//            roll_widths_mm, roll_sound_lufs, roll_haptic_rms_db: optional, all three or none
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
 //   origin_y_px
@@ -43,16 +44,18 @@ struct TextureGains {
 // generator (kiosk/texture_levels.h); the kiosk's per-stroke gains are computed from it
 // (kiosk/stroke_gain.h). Values are [style][width][speed][pressure], flattened in that order.
 struct StrokeLevelTable {
-  static constexpr int kStyles = 2;      // 0 scrape, 1 rub
+  static constexpr int kMaxStyles = 3;   // 0 scrape, 1 rub, 2 roll (optional)
   std::vector<double> scrape_widths_mm;  // probe widths of each style, strictly increasing, > 0;
   std::vector<double> rub_widths_mm;     // as many for each style
+  std::vector<double> roll_widths_mm;    // empty: no roll rows (a roll then reads the scrape's)
   std::vector<double> speeds_mm_s;       // strictly increasing, > 0
   std::vector<double> pressures;         // strictly increasing, in (0, 1]
-  std::vector<double> sound_lufs;        // kStyles x widths x speeds x pressures
+  std::vector<double> sound_lufs;        // styles() x widths x speeds x pressures
   std::vector<double> haptic_rms_db;
 
+  int styles() const { return roll_widths_mm.empty() ? 2 : 3; }
   const std::vector<double>& widths_mm(int style) const {
-    return style == 0 ? scrape_widths_mm : rub_widths_mm;
+    return style == 0 ? scrape_widths_mm : style == 1 ? rub_widths_mm : roll_widths_mm;
   }
   std::size_t Index(int style, std::size_t width, std::size_t speed, std::size_t pressure) const {
     return ((static_cast<std::size_t>(style) * scrape_widths_mm.size() + width) *
@@ -63,7 +66,8 @@ struct StrokeLevelTable {
   }
   bool SameGrid(const StrokeLevelTable& other) const {
     return scrape_widths_mm == other.scrape_widths_mm && rub_widths_mm == other.rub_widths_mm &&
-           speeds_mm_s == other.speeds_mm_s && pressures == other.pressures;
+           roll_widths_mm == other.roll_widths_mm && speeds_mm_s == other.speeds_mm_s &&
+           pressures == other.pressures;
   }
 };
 

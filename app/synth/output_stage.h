@@ -9,6 +9,12 @@
 //         haptic ceiling
 //         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
 //         haptic_enabled is false.
+// Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound (one-pole,
+// kLevellerWindowS, about a syllable: short enough to catch one loud stroke, long enough to leave
+// clicks and the texture's own rhythm alone) sets a gain of min(1, cap / RMS), which the sound
+// follows fast going down (kLevellerAttackS) and slowly back up (kLevellerReleaseS), so the level
+// of a loud stroke is brought towards the cap without pumping. Peaks are the soft limiter's and
+// the final safety stage's job.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
 // Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
@@ -43,6 +49,9 @@ class OutputStage {
   static constexpr double kLowVibrationRampS = 0.02;
   static constexpr double kMaxStrokeGain = 10.0;  // +20 dB
   static constexpr double kMinStrokeRampS = 0.001;
+  static constexpr double kLevellerWindowS = 0.05;
+  static constexpr double kLevellerAttackS = 0.005;
+  static constexpr double kLevellerReleaseS = 0.5;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();
@@ -58,7 +67,16 @@ class OutputStage {
         stroke_sound_ = stroke_sound_target_;
       }
     }
-    *sound = static_cast<float>(SoftLimit(sound_gain_ * stroke_sound_ * pickup));
+    double sound_y = sound_gain_ * stroke_sound_ * pickup;
+    if (cap_square_ > 0.0) {
+      level_square_ += level_step_ * (sound_y * sound_y - level_square_);
+      const double want =
+          level_square_ > cap_square_ ? std::sqrt(cap_square_ / level_square_) : 1.0;
+      leveller_gain_ +=
+          (want < leveller_gain_ ? attack_step_ : release_step_) * (want - leveller_gain_);
+      sound_y *= leveller_gain_;
+    }
+    *sound = static_cast<float>(SoftLimit(sound_y));
     if (!haptic_enabled_) {
       *haptic = 0.0f;
       return;
@@ -112,6 +130,10 @@ class OutputStage {
   double stroke_sound_step_ = 0.0;
   double stroke_haptic_ = 1.0;  // requested haptic factor (part of the trim's target)
   bool haptic_enabled_ = true;
+  double cap_square_ = 0.0;  // leveller: cap², running mean square, gain and one-pole steps
+  double level_square_ = 0.0;
+  double leveller_gain_ = 1.0;
+  double level_step_ = 0.0, attack_step_ = 0.0, release_step_ = 0.0;
 
   void StartTrimRamp(double samples);
 };

@@ -60,8 +60,21 @@ TEST_CASE(
   CHECK(InterpolateLevels(t, ProbeStyle::kScrape, 2.4, 40.0, 0.3).sound_db == Approx(-43.0));
   CHECK(InterpolateLevels(t, ProbeStyle::kRub, 9.0, 40.0, 0.3).sound_db == Approx(-35.0 - 11.0));
   CHECK(InterpolateLevels(t, ProbeStyle::kScrape, NAN, NAN, NAN).sound_db == Approx(-41.0));
-  // Roll has no table of its own: it takes the scrape's.
+  // Without roll rows a roll takes the scrape's.
   CHECK(InterpolateLevels(t, ProbeStyle::kRoll, 0.5, 40.0, 0.3).sound_db == Approx(-41.0));
+  // With them, its own (here 30 dB under the scrape, widths 1 / 3 mm).
+  StrokeLevelTable with_roll = t;
+  with_roll.roll_widths_mm = {1.0, 3.0};
+  const std::size_t per_style = 2 * 2 * 2;
+  for (std::size_t i = 0; i < per_style; ++i) {
+    with_roll.sound_lufs.push_back(t.sound_lufs[i] - 30.0);
+    with_roll.haptic_rms_db.push_back(t.haptic_rms_db[i] - 30.0);
+  }
+  CHECK(InterpolateLevels(with_roll, ProbeStyle::kRoll, 1.0, 40.0, 0.3).sound_db == Approx(-71.0));
+  CHECK(InterpolateLevels(with_roll, ProbeStyle::kRoll, 3.0, 400.0, 0.6).haptic_db ==
+        Approx(-41.0 + 13.0 - 3.0 - 30.0));  // the rows of the 1.5 mm scrape, 30 dB down
+  CHECK(InterpolateLevels(with_roll, ProbeStyle::kScrape, 0.5, 40.0, 0.3).sound_db ==
+        Approx(-41.0));
 }
 
 TEST_CASE(

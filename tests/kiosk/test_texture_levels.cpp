@@ -313,7 +313,8 @@ TEST_CASE(
 #endif
 
 TEST_CASE(
-    "the calibration strokes are the grid's scrapes and rubs in table order, on the screen, and "
+    "the calibration strokes are the grid's scrapes then rubs then rolls in table order, on the "
+    "screen, and "
     "never pop a bubble, and so are the held-out strokes",
     "[kiosk]") {
   const sas::kiosk::GestureMapping mapping;  // the kiosk engine's pen mapping
@@ -325,16 +326,24 @@ TEST_CASE(
   const std::size_t per_style = grid.scrape_widths_mm.size() * per_width;
   const auto places = static_cast<std::size_t>(grid.places);
   REQUIRE(grid.rub_widths_mm.size() == grid.scrape_widths_mm.size());
-  REQUIRE(calibration.size() == 2 * per_style * places);
+  REQUIRE(grid.roll_widths_mm.size() == grid.scrape_widths_mm.size());
+  REQUIRE(calibration.size() == 3 * per_style * places);
   const double pitch_mm = sas::surface::DisplayGeometry{}.pixel_pitch_mm();
   std::size_t k = 0;
   for (const auto& stroke : calibration) {  // [style][width][speed][pressure][place]
     const std::size_t point = k / places;
-    const bool rub = point >= per_style;
+    const std::size_t style = point / per_style;
     const double width_mm = sas::kiosk::WidthFromTiltMm(stroke.pen.tilt_deg, mapping);
-    CHECK(sas::kiosk::StyleFromWidth(width_mm, mapping) ==
-          (rub ? sas::synth::ProbeStyle::kRub : sas::synth::ProbeStyle::kScrape));
-    const auto& widths = rub ? grid.rub_widths_mm : grid.scrape_widths_mm;
+    if (style == 2) {  // roll: forced, at any tilt
+      CHECK(stroke.pen.style == sas::synth::ProbeStyle::kRoll);
+    } else {
+      CHECK_FALSE(stroke.pen.style.has_value());
+      CHECK(sas::kiosk::StyleFromWidth(width_mm, mapping) ==
+            (style == 1 ? sas::synth::ProbeStyle::kRub : sas::synth::ProbeStyle::kScrape));
+    }
+    const auto& widths = style == 0   ? grid.scrape_widths_mm
+                         : style == 1 ? grid.rub_widths_mm
+                                      : grid.roll_widths_mm;
     CHECK(width_mm == Approx(widths[(point % per_style) / per_width]));
     const double length_mm = std::hypot((stroke.pen.x1 - stroke.pen.x0) * 1920.0,
                                         (stroke.pen.y1 - stroke.pen.y0) * 1080.0) *

@@ -144,4 +144,25 @@ rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0, -56.0, -54.0, -41.0, -39.0]
   fails("[0.3, 0.6]", "[0.3, 1.6]", "levels.pressures: value");
   fails("rub_haptic_rms_db", "rub_vibration", "levels.rub_vibration: unknown key");
   fails("scrape_widths_mm = [0.3, 1.9]\n", "", "missing required key");
+  CHECK(l.styles() == 2);  // no roll rows: a roll reads the scrape's
+
+  // Roll rows: all three keys or none, as many widths as the other styles.
+  const std::string roll = R"(roll_widths_mm = [0.3, 6.0]
+roll_sound_lufs = [-60.0, -58.0, -50.0, -48.0, -65.0, -63.0, -55.0, -53.0]
+roll_haptic_rms_db = [-61.0, -59.0, -51.0, -49.0, -66.0, -64.0, -56.0, -54.0]
+)";
+  const auto with_roll =
+      ParseTextureFile(Replace(kValid, "\n[probe]", levels + roll + "\n[probe]"), "t.toml");
+  REQUIRE(with_roll.levels);
+  const auto& r = *with_roll.levels;
+  CHECK(r.styles() == 3);
+  CHECK(r.widths_mm(2) == std::vector<double>{0.3, 6.0});
+  CHECK(r.sound_lufs[r.Index(2, 1, 0, 1)] == -63.0);  // roll, 6 mm, 40 mm/s, pressure 0.6
+  CHECK(r.haptic_rms_db[r.Index(2, 0, 1, 0)] == -51.0);
+  CHECK(r.sound_lufs[r.Index(1, 0, 0, 1)] == -48.0);  // the rub rows are where they were
+  CHECK_THROWS_WITH(
+      ParseTextureFile(
+          Replace(kValid, "\n[probe]", levels + "roll_widths_mm = [0.3, 6.0]\n" + "\n[probe]"),
+          "t.toml"),
+      Catch::Contains("levels.roll_sound_lufs"));
 }

@@ -1,0 +1,74 @@
+// The output stage's stroke leveller: a sustained sound over the cap comes down to it, a sound
+// under it passes untouched (bit for bit), and a short click is left mostly to the limiters.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "synth/output_stage.h"
+
+using sas::synth::OutputParams;
+using sas::synth::OutputStage;
+
+namespace {
+
+constexpr double kFs = 48000.0;
+constexpr double kPi = 3.14159265358979323846;
+
+// Channel 1 of `stage` for a sine of amplitude `amplitude` at 700 Hz, `seconds` long.
+std::vector<float> PlaySine(OutputStage& stage, double amplitude, double seconds) {
+  std::vector<float> out(static_cast<std::size_t>(seconds * kFs));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    float haptic = 0.0f;
+    stage.Process(amplitude * std::sin(2.0 * kPi * 700.0 * static_cast<double>(i) / kFs), &out[i],
+                  &haptic);
+  }
+  return out;
+}
+
+double RmsDb(const std::vector<float>& x, std::size_t from, std::size_t to) {
+  double sum = 0.0;
+  for (std::size_t i = from; i < to; ++i) sum += static_cast<double>(x[i]) * x[i];
+  return 10.0 * std::log10(sum / static_cast<double>(to - from));
+}
+
+OutputStage Stage(double cap) {
+  OutputParams p;
+  p.haptic_enabled = false;
+  p.sound_level_cap = cap;
+  OutputStage stage;
+  stage.Prepare(p, kFs);
+  return stage;
+}
+
+}  // namespace
+
+TEST_CASE("stroke leveller: a sustained sound 12 dB over the cap settles within 1 dB of it") {
+  const double cap = std::pow(10.0, -30.0 / 20.0);  // -30 dBFS RMS, far under the soft limiter
+  OutputStage stage = Stage(cap);
+  const double amplitude = std::sqrt(2.0) * cap * std::pow(10.0, 12.0 / 20.0);
+  const std::vector<float> out = PlaySine(stage, amplitude, 1.0);
+  const double settled = RmsDb(out, out.size() / 2, out.size());
+  CHECK(settled == Approx(-30.0).margin(1.0));
+  // Without a cap the same sine keeps its level.
+  OutputStage open = Stage(0.0);
+  const std::vector<float> free = PlaySine(open, amplitude, 1.0);
+  CHECK(RmsDb(free, free.size() / 2, free.size()) == Approx(-18.0).margin(0.1));
+}
+
+TEST_CASE("stroke leveller: a sound under the cap is bit for bit the uncapped output") {
+  const double cap = std::pow(10.0, -20.0 / 20.0);
+  OutputStage capped = Stage(cap);
+  OutputStage open = Stage(0.0);
+  const double amplitude = std::sqrt(2.0) * cap * std::pow(10.0, -3.0 / 20.0);
+  CHECK(PlaySine(capped, amplitude, 0.5) == PlaySine(open, amplitude, 0.5));
+}
+
+TEST_CASE("stroke leveller: a 2 ms click over the cap keeps most of its peak") {
+  const double cap = std::pow(10.0, -30.0 / 20.0);
+  OutputStage stage = Stage(cap);
+  const double amplitude = std::sqrt(2.0) * cap * std::pow(10.0, 12.0 / 20.0);
+  const std::vector<float> click = PlaySine(stage, amplitude, 0.002);
+  double peak = 0.0;
+  for (const float v : click) peak = std::max(peak, static_cast<double>(std::fabs(v)));
+  CHECK(20.0 * std::log10(peak / amplitude) > -3.0);
+}
