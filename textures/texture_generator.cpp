@@ -574,7 +574,6 @@ std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
   };
   const std::size_t widths = levels.scrape_widths_mm.size();
   const std::size_t speeds = levels.speeds_mm_s.size(), pressures = levels.pressures.size();
-  const std::size_t per_style = widths * speeds * pressures;
   std::string out =
       "\n[levels]\n# This texture's stroke levels at the gains above, measured on the grid below "
       "(kiosk/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
@@ -582,13 +581,15 @@ std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
       "textures' levels for it.\n";
   out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
   out += "rub_widths_mm = " + list(levels.rub_widths_mm, 0, widths, widths);
+  const std::size_t rolls = levels.roll_widths_mm.size();
   if (levels.styles() > 2)
-    out += "roll_widths_mm = " + list(levels.roll_widths_mm, 0, widths, widths);
+    out += "roll_widths_mm = " + list(levels.roll_widths_mm, 0, rolls, rolls);
   out += "speeds_mm_s = " + list(levels.speeds_mm_s, 0, speeds, speeds);
   out += "pressures = " + list(levels.pressures, 0, pressures, pressures);
   const char* names[] = {"scrape", "rub", "roll"};
   for (int style = 0; style < levels.styles(); ++style) {
-    const std::size_t from = static_cast<std::size_t>(style) * per_style;
+    const std::size_t from = levels.Index(style, 0, 0, 0);
+    const std::size_t per_style = levels.widths_mm(style).size() * speeds * pressures;
     out += std::string(names[style]) +
            "_sound_lufs = " + list(levels.sound_lufs, from, per_style, pressures);
     out += std::string(names[style]) +

@@ -217,6 +217,11 @@ synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping)
   return width_mm >= mapping.rub_width_mm ? synth::ProbeStyle::kRub : synth::ProbeStyle::kScrape;
 }
 
+double ProbeWidthMm(synth::ProbeStyle style, double tilt_deg, const GestureMapping& mapping) {
+  return style == synth::ProbeStyle::kRoll ? mapping.min_width_mm
+                                           : WidthFromTiltMm(tilt_deg, mapping);
+}
+
 std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const GestureMapping& mapping,
                                             double sample_rate_hz) {
   if (gesture.samples.size() < 2) throw GestureError(gesture.name + ": needs at least two rows");
@@ -260,8 +265,8 @@ std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const Gestur
     c.direction_y = direction_y;
     c.normal_force_n = Clamp01(pressure) * mapping.max_force_n;
     c.penetration_m = Clamp01(pressure) * mapping.max_penetration_m;
-    c.width_mm = WidthFromTiltMm(tilt_deg, mapping);
-    c.style = mapping.style.value_or(StyleFromWidth(c.width_mm, mapping));
+    c.style = mapping.style.value_or(StyleFromWidth(WidthFromTiltMm(tilt_deg, mapping), mapping));
+    c.width_mm = ProbeWidthMm(c.style, tilt_deg, mapping);
     c.landing_speed_mps = gesture.landing_speed_mps;
     commands.push_back(timed);
   }

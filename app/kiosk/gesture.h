@@ -90,5 +90,8 @@ double WidthFromTiltMm(double tilt_deg, const GestureMapping& mapping);
 // Its inverse within the mapping's range: the tilt that gives a probe `width_mm` wide.
 double TiltFromWidthDeg(double width_mm, const GestureMapping& mapping);
 synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping);
+// The probe width for a pen held at `tilt_deg` in `style`: the tilt's width, except for a roll,
+// whose ball is the pen's own and does not grow when the pen leans (min_width_mm).
+double ProbeWidthMm(synth::ProbeStyle style, double tilt_deg, const GestureMapping& mapping);
 
 }  // namespace sas::kiosk

@@ -410,7 +410,10 @@ void KioskEngine::OnPen(const PenInput& pen) {
     command.width_mm = probe.width_mm;
     command.style = probe.style;
   }
-  if (pen.style) command.style = *pen.style;
+  if (pen.style) {
+    command.style = *pen.style;
+    if (pen.has_tilt) command.width_mm = ProbeWidthMm(command.style, pen.tilt_deg, mapping_);
+  }
 
   // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
   // the pen plays; held while the pen is up. The speed counts hover reports too (touch-down).

@@ -82,10 +82,11 @@ struct VisitorStroke {
 struct CalibrationGrid {
   std::vector<double> scrape_widths_mm = {0.3, 0.9, 1.9};
   std::vector<double> rub_widths_mm = {2.1, 4.0, 6.0};
-  // Rolling (a ball following the relief, any tilt: the width sets the ball) is far quieter than
-  // sliding on the soft textures; its own rows let the kiosk match it across textures. Empty: no
-  // roll rows. The texture's [gains] come from scrape and rub only, so adding rows changes no gain.
-  std::vector<double> roll_widths_mm = {0.3, 2.1, 6.0};
+  // Rolling (a ball following the relief) is far quieter than sliding on the soft textures; its
+  // own rows let the kiosk match it across textures. The kiosk's roll is the pen's ball whatever
+  // the tilt (kiosk/gesture.h, ProbeWidthMm): one width. Empty: no roll rows. The texture's
+  // [gains] come from scrape and rub only, so these rows change no gain.
+  std::vector<double> roll_widths_mm = {0.3};
   std::vector<double> speeds_mm_s = {40.0, 80.0, 160.0, 350.0};
   std::vector<double> pressures = {0.3, 0.45, 0.6};
   int places = 12;

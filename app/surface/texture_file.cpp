@@ -117,8 +117,7 @@ StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
   const bool roll = table.contains("roll_widths_mm") || table.contains("roll_sound_lufs") ||
                     table.contains("roll_haptic_rms_db");
   if (roll) {
-    levels.roll_widths_mm = Numbers(check, table, "roll_widths_mm", 0.05, 50.0,
-                                    levels.scrape_widths_mm.size(), "as many as scrape_widths_mm");
+    levels.roll_widths_mm = Numbers(check, table, "roll_widths_mm", 0.05, 50.0, 0);
   }
   levels.speeds_mm_s = Numbers(check, table, "speeds_mm_s", 1.0, 5000.0, 0);
   levels.pressures = Numbers(check, table, "pressures", 0.01, 1.0, 0);
@@ -135,10 +134,12 @@ StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
                  "must be strictly increasing");
     }
   }
-  const std::size_t per_style =
-      levels.scrape_widths_mm.size() * levels.speeds_mm_s.size() * levels.pressures.size();
+  const std::size_t per_width = levels.speeds_mm_s.size() * levels.pressures.size();
   for (const char* style : {"scrape", "rub", "roll"}) {
     if (!roll && std::string_view(style) == "roll") break;
+    const std::size_t per_style =
+        per_width * (std::string_view(style) == "roll" ? levels.roll_widths_mm.size()
+                                                       : levels.scrape_widths_mm.size());
     for (const bool sound : {true, false}) {
       const std::string key = std::string(style) + (sound ? "_sound_lufs" : "_haptic_rms_db");
       const auto values = Numbers(check, table, key, -200.0, 20.0, per_style);

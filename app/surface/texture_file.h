@@ -46,11 +46,12 @@ struct TextureGains {
 struct StrokeLevelTable {
   static constexpr int kMaxStyles = 3;   // 0 scrape, 1 rub, 2 roll (optional)
   std::vector<double> scrape_widths_mm;  // probe widths of each style, strictly increasing, > 0;
-  std::vector<double> rub_widths_mm;     // as many for each style
-  std::vector<double> roll_widths_mm;    // empty: no roll rows (a roll then reads the scrape's)
-  std::vector<double> speeds_mm_s;       // strictly increasing, > 0
-  std::vector<double> pressures;         // strictly increasing, in (0, 1]
-  std::vector<double> sound_lufs;        // styles() x widths x speeds x pressures
+  std::vector<double> rub_widths_mm;     // as many as the scrape's
+  std::vector<double>
+      roll_widths_mm;               // any number; empty: no roll rows (a roll reads the scrape's)
+  std::vector<double> speeds_mm_s;  // strictly increasing, > 0
+  std::vector<double> pressures;    // strictly increasing, in (0, 1]
+  std::vector<double> sound_lufs;   // styles() x widths x speeds x pressures
   std::vector<double> haptic_rms_db;
 
   int styles() const { return roll_widths_mm.empty() ? 2 : 3; }
@@ -58,11 +59,10 @@ struct StrokeLevelTable {
     return style == 0 ? scrape_widths_mm : style == 1 ? rub_widths_mm : roll_widths_mm;
   }
   std::size_t Index(int style, std::size_t width, std::size_t speed, std::size_t pressure) const {
-    return ((static_cast<std::size_t>(style) * scrape_widths_mm.size() + width) *
-                speeds_mm_s.size() +
-            speed) *
-               pressures.size() +
-           pressure;
+    // Widths of the styles before this one: the blocks follow each other, style-major.
+    std::size_t before = 0;
+    for (int s = 0; s < style; ++s) before += widths_mm(s).size();
+    return ((before + width) * speeds_mm_s.size() + speed) * pressures.size() + pressure;
   }
   bool SameGrid(const StrokeLevelTable& other) const {
     return scrape_widths_mm == other.scrape_widths_mm && rub_widths_mm == other.rub_widths_mm &&

@@ -146,7 +146,7 @@ rub_haptic_rms_db = [-51.0, -49.0, -36.0, -34.0, -56.0, -54.0, -41.0, -39.0]
   fails("scrape_widths_mm = [0.3, 1.9]\n", "", "missing required key");
   CHECK(l.styles() == 2);  // no roll rows: a roll reads the scrape's
 
-  // Roll rows: all three keys or none, as many widths as the other styles.
+  // Roll rows: all three keys or none, any number of widths.
   const std::string roll = R"(roll_widths_mm = [0.3, 6.0]
 roll_sound_lufs = [-60.0, -58.0, -50.0, -48.0, -65.0, -63.0, -55.0, -53.0]
 roll_haptic_rms_db = [-61.0, -59.0, -51.0, -49.0, -66.0, -64.0, -56.0, -54.0]
