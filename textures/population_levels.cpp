@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
           "| texture | median LUFS (vs mean of medians) | 5–95 % | loudest − median | median "
           "transducer dB (vs mean) | 5–95 % | scrape / rub / roll median LUFS | scrape / rub / "
           "roll transducer dB |\n|---|---|---|---|---|---|---|---|\n";
-    bool sound_ok = true, haptic_ok = true, blast_ok = true;
+    bool sound_ok = true, haptic_ok = true, blast_ok = true, felt_ok = true;
     for (const auto& r : rows) {
       const auto s = [&](const char* k) {
         return r.per_style.count(k) ? r.per_style.at(k) : std::pair{0.0, 0.0};
@@ -134,11 +134,17 @@ int main(int argc, char** argv) {
       sound_ok = sound_ok && std::fabs(r.sound_median - mean_sound) <= 1.0;
       haptic_ok = haptic_ok && std::fabs(r.haptic_median - mean_haptic) <= 1.5;
       blast_ok = blast_ok && r.sound_max - r.sound_median <= 10.0;
+      for (const char* style : {"scrape", "rub", "roll"}) {
+        felt_ok = felt_ok && s(style).second >= defaults.haptic_ceiling_db - 15.0;
+      }
     }
     md << "\nTargets: median loudness within ±1 LU of the mean of the four: **"
        << (sound_ok ? "holds" : "does not hold") << "**; median transducer level within ±1.5 dB: **"
        << (haptic_ok ? "holds" : "does not hold") << "**; no stroke more than 10 LU over its "
-       << "texture's median: **" << (blast_ok ? "holds" : "does not hold") << "**.\n";
+       << "texture's median: **" << (blast_ok ? "holds" : "does not hold")
+       << "**; every style's median transducer level within 15 dB of the transducer ceiling ("
+       << defaults.haptic_ceiling_db << " dBFS): **" << (felt_ok ? "holds" : "does not hold")
+       << "**.\n";
     std::printf("%s", md.str().c_str());
     if (!docs.empty()) {
       std::filesystem::create_directories(docs);

@@ -47,12 +47,8 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   low_vibration_gain_ = std::clamp(finite_or(params.low_vibration_gain, 1.0), 0.0, 1.0);
   ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
   low_vibration_ = params.low_vibration;
-  const double cap = finite_or(params.sound_level_cap, 0.0);
-  cap_square_ = cap > 0.0 ? cap * cap : 0.0;
-  const double fs = std::max(sample_rate_hz, 1.0);
-  level_step_ = 1.0 - std::exp(-1.0 / (kLevellerWindowS * fs));
-  attack_step_ = 1.0 - std::exp(-1.0 / (kLevellerAttackS * fs));
-  release_step_ = 1.0 - std::exp(-1.0 / (kLevellerReleaseS * fs));
+  sound_leveller_.Prepare(finite_or(params.sound_level_cap, 0.0), kLevellerWindowS,
+                          kLevellerAttackS, kLevellerReleaseS, sample_rate_hz);
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
@@ -73,8 +69,16 @@ void OutputStage::Reset() {
   trim_step_ = 0.0;
   stroke_sound_ = stroke_sound_target_;
   stroke_sound_step_ = 0.0;
-  level_square_ = 0.0;
-  leveller_gain_ = 1.0;
+  sound_leveller_.Reset();
+}
+
+void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s, double fs) {
+  fs = std::max(fs, 1.0);
+  cap_square = cap > 0.0 && std::isfinite(cap) ? cap * cap : 0.0;
+  level_step = 1.0 - std::exp(-1.0 / (window_s * fs));
+  attack_step = 1.0 - std::exp(-1.0 / (attack_s * fs));
+  release_step = 1.0 - std::exp(-1.0 / (release_s * fs));
+  Reset();
 }
 
 void OutputStage::StartTrimRamp(double samples) {

@@ -43,6 +43,27 @@ struct Biquad {
   }
 };
 
+// Slow level control of one channel (see the stroke leveller above): cap is an RMS, 0 = off.
+struct Leveller {
+  double cap_square = 0.0;
+  double level_square = 0.0;  // running mean square of the input
+  double gain = 1.0;
+  double level_step = 0.0, attack_step = 0.0, release_step = 0.0;
+
+  void Prepare(double cap, double window_s, double attack_s, double release_s, double fs);
+  void Reset() {
+    level_square = 0.0;
+    gain = 1.0;
+  }
+  double Apply(double y) {
+    if (!(cap_square > 0.0)) return y;
+    level_square += level_step * (y * y - level_square);
+    const double want = level_square > cap_square ? std::sqrt(cap_square / level_square) : 1.0;
+    gain += (want < gain ? attack_step : release_step) * (want - gain);
+    return y * gain;
+  }
+};
+
 class OutputStage {
  public:
   static constexpr double kKnee = 0.5;
@@ -59,29 +80,25 @@ class OutputStage {
   static double SoftLimit(double x);
 
   // One frame: writes the sound and haptic samples for input `pickup`.
-  void Process(double pickup, float* sound, float* haptic) {
+  void Process(double pickup, float* sound, float* haptic) { Process(pickup, 0.0, sound, haptic); }
+  // The same with `felt` (m/s, like the pickup) added to the transducer's input only: what the
+  // stylus itself carries from the contact (Scene: the contact force).
+  void Process(double pickup, double felt, float* sound, float* haptic) {
     if (!std::isfinite(pickup)) pickup = 0.0;
+    if (!std::isfinite(felt)) felt = 0.0;
     if (stroke_sound_ != stroke_sound_target_) {
       stroke_sound_ += stroke_sound_step_;
       if ((stroke_sound_step_ > 0.0) == (stroke_sound_ >= stroke_sound_target_)) {
         stroke_sound_ = stroke_sound_target_;
       }
     }
-    double sound_y = sound_gain_ * stroke_sound_ * pickup;
-    if (cap_square_ > 0.0) {
-      level_square_ += level_step_ * (sound_y * sound_y - level_square_);
-      const double want =
-          level_square_ > cap_square_ ? std::sqrt(cap_square_ / level_square_) : 1.0;
-      leveller_gain_ +=
-          (want < leveller_gain_ ? attack_step_ : release_step_) * (want - leveller_gain_);
-      sound_y *= leveller_gain_;
-    }
-    *sound = static_cast<float>(SoftLimit(sound_y));
+    *sound =
+        static_cast<float>(SoftLimit(sound_leveller_.Apply(sound_gain_ * stroke_sound_ * pickup)));
     if (!haptic_enabled_) {
       *haptic = 0.0f;
       return;
     }
-    double y = pickup;
+    double y = pickup + felt;
     for (auto& section : sections_) y = section.Process(y);
     if (!std::isfinite(y)) {  // cannot happen for finite input, but never let NaN reach a device
       Reset();
@@ -130,10 +147,7 @@ class OutputStage {
   double stroke_sound_step_ = 0.0;
   double stroke_haptic_ = 1.0;  // requested haptic factor (part of the trim's target)
   bool haptic_enabled_ = true;
-  double cap_square_ = 0.0;  // leveller: cap², running mean square, gain and one-pole steps
-  double level_square_ = 0.0;
-  double leveller_gain_ = 1.0;
-  double level_step_ = 0.0, attack_step_ = 0.0, release_step_ = 0.0;
+  Leveller sound_leveller_;
 
   void StartTrimRamp(double samples);
 };

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "synth/contact_kernel.h"
 #include "synth/output_stage.h"
@@ -89,6 +90,7 @@ struct Scene::Impl {
   double output_gain = 1.0;       // max(|sound gain|, |haptic gain|, 1)
   double release_gain = 0.0;  // output_gain · Σ |g_i| / (m_i ω0_i): pickup per newton released
   double max_abs_gain = 0.0;  // output_gain · max |g_i|
+  double felt_per_newton = 0.0;  // contact force -> transducer input (RenderFrame)
 
   // Gesture state set by the last command.
   ProbeCommand gesture{};
@@ -362,7 +364,12 @@ struct Scene::Impl {
     }
     const double pickup = modes.PickupVelocity();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
-    output.Process(pickup, &frame[0], &frame[1]);
+    // The stylus carries the contact force to the hand whether or not the surface rings in the
+    // transducer's band (glass: all modes above 3 kHz): as the velocity that force gives the
+    // probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive (Verrillo,
+    // JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its fluctuation.
+    const double felt = probe.active ? (probe.normal_n + probe.friction_n) * felt_per_newton : 0.0;
+    output.Process(pickup, felt, &frame[0], &frame[1]);
   }
 };
 
@@ -398,6 +405,7 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.impact.Set(m.impact);
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
+  s.felt_per_newton = 1.0 / (m.probe.mass_kg * 2.0 * std::numbers::pi * 250.0);
   s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
   // Automatic oversampling adapts per compression (contact.h, ContactSubstepsForSpeed).
   const bool adaptive = m.impact.enabled && m.impact.oversample <= 0;

@@ -104,6 +104,7 @@ TEST_CASE(
   const double attenuation_db = 12.0;
   OutputParams p;
   p.low_vibration_gain = std::pow(10.0, -attenuation_db / 20.0);
+  p.haptic_gain = 0.2;  // peaks below the limiter's knee: the attenuation is exactly linear
   const long frames = 24000;
   const long switch_frame = 6016;  // a block boundary; the ramp then takes 960 frames
   Scene normal, low;
@@ -152,7 +153,8 @@ TEST_CASE(
     "[dsp][render]") {
   test::OwnedField field(4000, 1, 0.153e-3, Ridges());
   OutputParams p;
-  p.sound_gain = 0.1;  // peaks below the limiter's knee even at +6 dB: the gain is exactly linear
+  p.sound_gain = 0.1;  // peaks below the limiters' knees even at +6 dB: the gain is exactly linear
+  p.haptic_gain = 0.2;
   const long frames = 24000;
   const long switch_frame = 6016;  // a block boundary; the ramp then takes 960 frames
   const double sound_db = 5.0, haptic_db = -7.0;
