@@ -150,7 +150,7 @@ void TimedRender(synth::Scene& scene, const std::vector<kiosk::TimedCommand>& co
 }
 
 StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::VisitorStroke& stroke,
-                       int reps) {
+                       int reps, bool stats) {
   StrokeResult r;
   r.style = stroke.name;
   long pen_down = 0;
@@ -168,6 +168,7 @@ StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::Vis
   r.pen_down = pen_down;
   r.core_percent = 100.0 * best_down / (static_cast<double>(pen_down) / kFs);
   r.tail_core_percent = 100.0 * best_tail / kTailS;
+  if (!stats) return r;
   // Instrumented pass, one frame at a time (the output does not depend on the block size).
   scene.Reset();
   std::size_t next = 0;
@@ -212,6 +213,7 @@ struct Options {
   unsigned seed = 2026;
   int reps = 3;
   bool quick = false;
+  bool stats = true;  // --cost-only: no instrumented pass (profiling)
   std::string docs = SAS_DOCS_DIR;
   std::string textures = SAS_TEXTURES_DIR;
 };
@@ -239,10 +241,12 @@ Options ParseArgs(int argc, char** argv) {
       o.textures = value();
     } else if (a == "--quick") {
       o.quick = true;
+    } else if (a == "--cost-only") {
+      o.stats = false;
     } else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR|-] "
-          "[--textures DIR] [--quick]\n");
+          "[--textures DIR] [--quick] [--cost-only]\n");
       std::exit(0);
     } else {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
@@ -302,7 +306,7 @@ int main(int argc, char** argv) {
     long down = 0, contact = 0, felt = 0, tail = 0, idle = 0;
     double worst = -1.0;
     for (std::size_t i = 0; i < population.size(); ++i) {
-      const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps);
+      const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats);
       costs.push_back(r.core_percent);
       s.by_style[r.style].push_back(r.core_percent);
       tails.push_back(r.tail_core_percent);
@@ -409,7 +413,7 @@ int main(int argc, char** argv) {
     std::ofstream(path) << md.str();
     std::printf("wrote %s\n", path.c_str());
   }
-  if (unfelt) {
+  if (unfelt && opt.stats) {
     std::fprintf(stderr, "a texture's strokes never felt its profile: not a visitor benchmark\n");
     return 1;
   }
