@@ -50,6 +50,7 @@ void Phis(double r, double* phi1, double* phi2) {
 struct Secant {
   double g = 0.0;
   double dg = 0.0;
+  double f1 = -1.0;  // k x1^α where the secant needed it (x1 > 0, not the midpoint expansion)
 };
 Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
   const double x1 = x0 + d;
@@ -76,6 +77,7 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
   const double inv_d = 1.0 / d;
   s.g = (f1 * x1 * m.inv_alpha_plus_one - v0) * inv_d;
   s.dg = (f1 - s.g) * inv_d;
+  s.f1 = f1;
   return s;
 }
 
@@ -105,7 +107,8 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, dou
   const double x1 = x0 + d;
   double q = 1.0, dq = 0.0;
   if (a > 0.0) {
-    const double f1 = x1 > 0.0 ? m.k * m.PowAlpha(x1) : 0.0;
+    // The secant's own k x1^α when it took one (one power per evaluation, not two).
+    const double f1 = x1 > 0.0 ? (s.f1 >= 0.0 ? s.f1 : m.k * m.PowAlpha(x1)) : 0.0;
     q = 1.0 - a * (f1 - f0);
     if (q < kMinQ) {
       q = kMinQ;
