@@ -540,6 +540,8 @@ SceneProbeState Scene::probe_state() const {
   st.friction_force_n = s.probe.friction_n;
   st.bristle_m = s.probe.bristle_m;
   st.surface_offset_m = s.surface_m;
+  st.felt_profile_m = s.probe.active ? s.Felt(s.x_m, s.y_m) : 0.0;
+  st.touched = s.probe.touched;
   st.x_m = s.x_m;
   st.y_m = s.y_m;
   st.substeps = s.probe.substeps_used;

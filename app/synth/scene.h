@@ -29,7 +29,11 @@ struct SceneProbeState {
   double normal_force_n = 0.0;    // last contact force on the probe (up = positive)
   double friction_force_n = 0.0;  // last friction force on the resonator (along the stroke)
   double bristle_m = 0.0;         // elasto-plastic bristle deflection z
-  double surface_offset_m = 0.0;  // felt profile height under the probe
+  double surface_offset_m = 0.0;  // felt profile height under the probe (+ micro-roughness)
+  // The felt profile alone (penetration threshold applied, no roughness): 0 wherever the probe
+  // feels nothing of the texture (benchmarks check that a stroke feels its profile).
+  double felt_profile_m = 0.0;
+  bool touched = false;  // a contact force acted during the last sample
   double x_m = 0.0;               // probe position on the surface
   double y_m = 0.0;
   int substeps = 1;               // contact sub-steps used in the last sample

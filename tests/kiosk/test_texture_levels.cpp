@@ -275,12 +275,14 @@ TEST_CASE(
 // levels were interpolated as powers, stroke_gain.h) and its vibration comes only from cracks
 // crossed. At a single place the same stroke differs by up to 21 / 37 dB. The bounds are the
 // measured worst plus ~0.5 dB, so a change that makes a stroke jump still shows. README,
-// "Textures, loudness matching and spoken cues".
+// "Textures, loudness matching and spoken cues". The discrete gradient's covariance-corrected
+// loss (synth/contact.cpp) moved the worst vibration spread from 16.9 to 19.0 dB (the textures
+// recalibrated; glass's crack-only vibration is the chaotic one): bound 17.4 -> 19.5 dB.
 constexpr double kHeldOutSoundLimitDb = 5.9;
-constexpr double kHeldOutHapticLimitDb = 17.4;
+constexpr double kHeldOutHapticLimitDb = 19.5;
 
 TEST_CASE(
-    "each held-out stroke (mean over 24 new places) is within 5.9 dB in loudness and 17.4 dB in "
+    "each held-out stroke (mean over 24 new places) is within 5.9 dB in loudness and 19.5 dB in "
     "vibration on the four textures through the kiosk engine (1 dB not reached)",
     "[kiosk][render]") {
   LevelMeasurement measurement;

@@ -1,7 +1,9 @@
 // Acceptance 5 of issue 3 (block rendering = per-sample rendering bit for bit; Reset() = a fresh
 // instance) plus the properties of the output stage (|sample| <= 1, never NaN, haptic band,
 // haptic path off) and of the surface reader (width window, penetration, roll envelope).
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -240,6 +242,51 @@ TEST_CASE(
   // 2 pixels from the centre and sinks by its sagitta r - sqrt(r² - (2p)²) ≈ 10 µm, not 50 µm.
   const double r = 2e-3, half_width = 2.0 * pitch;
   CHECK(flat - roll == Approx(r - std::sqrt(r * r - half_width * half_width)).epsilon(1e-6));
+}
+
+TEST_CASE("the rolling ball's envelope equals the full scan over every point of the ball",
+          "[dsp]") {
+  // The reader stops scanning the ball where no further point can change the result: compare
+  // with the maximum over all 2n + 1 points, bit for bit, over a rough 2-D field, light to full
+  // penetration, point to wide probes and every direction.
+  const int w = 120, hgt = 90;
+  const double pitch = 1.5e-4;
+  std::vector<float> h(static_cast<std::size_t>(w * hgt));
+  std::uint32_t state = 12345u;
+  for (auto& v : h) {
+    state = state * 1664525u + 1013904223u;
+    v = static_cast<float>(200e-6 * static_cast<double>(state >> 8) / 16777216.0);
+  }
+  test::OwnedField field(w, hgt, pitch, h);
+  SurfaceReader reader;
+  reader.Prepare(field.view);
+  int compared = 0, felt = 0;
+  for (double penetration : {0.0, 2e-6, 20e-6, 80e-6, 250e-6}) {
+    for (double width : {0.0, 0.9e-3, 4e-3}) {
+      for (int k = 0; k < 40; ++k) {
+        const double x = (10.0 + 2.37 * k) * pitch, y = (20.0 + 1.61 * k) * pitch;
+        const double angle = 0.7 * k;
+        const double dx = std::cos(angle), dy = std::sin(angle);
+        const double r = std::max(2e-3, 0.5 * width);
+        const int n = static_cast<int>(std::clamp(r / pitch, 1.0, 64.0));
+        const double ds = r / n;
+        double full = -1e300;
+        for (int i = -n; i <= n; ++i) {
+          const double s = i * ds;
+          const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
+          full = std::max(full, reader.BoxMean(x + s * dx, y + s * dy, width) + lift);
+        }
+        const double expected = std::max(full - (reader.max_height_m() - penetration), 0.0);
+        const double got = reader.Felt(x, y, width, penetration, ProbeStyle::kRoll, 2e-3, dx, dy);
+        CHECK(got == expected);
+        ++compared;
+        if (expected > 0.0) ++felt;
+      }
+    }
+  }
+  // Both outcomes are exercised: touching and not touching the felt part.
+  CHECK(felt > compared / 5);
+  CHECK(felt < compared);
 }
 
 TEST_CASE("2-D fields are averaged over a square window", "[dsp]") {

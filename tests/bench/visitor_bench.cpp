@@ -1,0 +1,421 @@
+// Visitor-stroke benchmark: what the synth costs for the strokes visitors actually make. The four
+// kiosk textures, each with its own material, height field (derived from the picture as the kiosk
+// loads it) and output gains, play the seeded visitor population of the level-matching tools
+// (kiosk/texture_levels.h VisitorPopulation: scrape / rub / roll, 20–400 mm/s, pressure 0.1–0.9,
+// any tilt in the style's range, 0.3–1.5 s, random places and directions). Each stroke is mapped
+// as the kiosk maps the pen: screen fractions on the 1920 x 1080 screen -> the picture covering
+// the screen (KioskEngine::ScreenToField's uniform scale and centred crop) -> a Gesture sampled at
+// the tablet's 200 Hz -> GestureToCommands (force = pressure · 2 N, penetration = pressure ·
+// relief, width and style from the tilt). Bubble pops are not simulated (the kiosk's press
+// detector is not part of the synth).
+//
+// Per stroke: the synth::Scene is rendered in 128-frame blocks from touch-down to lift (the
+// stroke) and for kTailS after (the ring-out), timed with the thread's CPU clock, best of --reps
+// runs after a warm-up. Cost = CPU time of the stroke's blocks over its duration, as a share of
+// one core at 48 kHz. A second, untimed pass renders one frame at a time and reads the scene's
+// probe state: the share of pen-down samples in contact (a contact force acted), whose felt
+// profile is nonzero (the probe feels the texture, not just a flat pressed slide), the sub-step
+// mix, and the share of the ring-out the scene spends idle (kernel skipped).
+//
+// Reports per texture: median, 95th percentile and worst stroke cost, the shares above, and the
+// same over all strokes; exits 1 if a texture's strokes never feel its profile (the benchmark
+// would not measure what visitors do). Targets (DESIGN.md §4): p95 <= 1 %, worst <= 2 % of one
+// core. Writes docs/visitor-bench.md (--docs DIR).
+//
+// Usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR] [--quick]
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "kiosk/builtin_profiles.h"
+#include "kiosk/gesture.h"
+#include "kiosk/kiosk_config.h"
+#include "kiosk/kiosk_engine.h"
+#include "kiosk/output_gains.h"
+#include "kiosk/render_command.h"
+#include "kiosk/texture_levels.h"
+#include "surface/image_surface.h"
+#include "surface/texture_set.h"
+#include "synth/scene.h"
+
+namespace {
+
+using namespace sas;
+
+constexpr double kFs = 48000.0;
+constexpr int kBlock = 128;
+constexpr double kTailS = 0.3;
+constexpr double kPenRateHz = 200.0;  // the tablet's report rate (VirtualVisit's default)
+constexpr int kScreenW = 1920, kScreenH = 1080;
+
+double CpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double pos = p * static_cast<double>(v.size() - 1);
+  const auto i = static_cast<std::size_t>(pos);
+  const double f = pos - static_cast<double>(i);
+  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
+}
+
+struct Texture {
+  std::string name;
+  surface::LoadedTexture loaded;
+  synth::MaterialParams material;
+  synth::OutputParams output;
+  double relief_m = 0.0;  // the kiosk's penetration at full pressure
+};
+
+// Screen fraction -> field millimetres: the picture covers the screen (uniform scale, centred
+// crop), as KioskEngine::ScreenToField.
+void ScreenToFieldMm(const surface::HeightField& field, double fx, double fy, double* x_mm,
+                     double* y_mm) {
+  const double sw = kScreenW, sh = kScreenH;
+  const double scale = std::max(sw / field.width(), sh / field.height());
+  const double crop_x = (field.width() * scale - sw) / 2.0;
+  const double crop_y = (field.height() * scale - sh) / 2.0;
+  const double mm = field.pitch_m() * 1e3;
+  *x_mm = (fx * sw + crop_x) / scale * mm;
+  *y_mm = (fy * sh + crop_y) / scale * mm;
+}
+
+std::vector<kiosk::TimedCommand> StrokeCommands(const kiosk::VisitorStroke& stroke,
+                                                const surface::HeightField& field, double relief_m,
+                                                long* pen_down_frames) {
+  const kiosk::PenStroke& p = stroke.pen;
+  kiosk::Gesture g;
+  g.name = stroke.name;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  ScreenToFieldMm(field, p.x0, p.y0, &x0, &y0);
+  ScreenToFieldMm(field, p.x1, p.y1, &x1, &y1);
+  g.samples.push_back({0.0, x0, y0, p.pressure, p.tilt_deg});
+  g.samples.push_back({p.duration_s, x1, y1, p.pressure, p.tilt_deg});
+  kiosk::GestureMapping mapping;
+  mapping.control_rate_hz = kPenRateHz;
+  mapping.max_penetration_m = relief_m;
+  mapping.style = p.style;
+  auto commands = kiosk::GestureToCommands(g, mapping, kFs);
+  *pen_down_frames = static_cast<long>(commands.back().frame);
+  return commands;
+}
+
+struct StrokeResult {
+  std::string style;
+  double core_percent = 0.0;       // stroke (pen down)
+  double tail_core_percent = 0.0;  // ring-out after the lift
+  long pen_down = 0;
+  long contact = 0, felt = 0;
+  long tail = 0, idle = 0;
+  std::map<int, long> substeps;  // pen-down samples by sub-steps used
+};
+
+// Renders the commands in blocks; returns CPU seconds of the blocks before and after the lift.
+void TimedRender(synth::Scene& scene, const std::vector<kiosk::TimedCommand>& commands,
+                 long pen_down, long frames, std::vector<float>& out, double* down_s,
+                 double* tail_s) {
+  scene.Reset();
+  std::size_t next = 0;
+  std::vector<synth::ProbeCommand> pending;
+  pending.reserve(16);
+  *down_s = *tail_s = 0.0;
+  for (long start = 0; start < frames; start += kBlock) {
+    const int n = static_cast<int>(std::min<long>(kBlock, frames - start));
+    pending.clear();
+    while (next < commands.size() && commands[next].frame < start + n) {
+      synth::ProbeCommand c = commands[next].command;
+      c.frame_offset = static_cast<std::uint32_t>(std::max<long>(0, commands[next].frame - start));
+      pending.push_back(c);
+      ++next;
+    }
+    const double t0 = CpuSeconds();
+    scene.Process(pending.data(), static_cast<int>(pending.size()), out.data(), n);
+    const double dt = CpuSeconds() - t0;
+    (start < pen_down ? *down_s : *tail_s) += dt;
+  }
+}
+
+StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::VisitorStroke& stroke,
+                       int reps, bool stats) {
+  StrokeResult r;
+  r.style = stroke.name;
+  long pen_down = 0;
+  const auto commands = StrokeCommands(stroke, *tex.loaded.field, tex.relief_m, &pen_down);
+  const long frames = pen_down + static_cast<long>(kTailS * kFs);
+  std::vector<float> out(2 * kBlock);
+  double best_down = std::numeric_limits<double>::infinity(), best_tail = best_down;
+  for (int rep = 0; rep <= reps; ++rep) {  // rep 0: warm-up
+    double down = 0.0, tail = 0.0;
+    TimedRender(scene, commands, pen_down, frames, out, &down, &tail);
+    if (rep == 0) continue;
+    best_down = std::min(best_down, down);
+    best_tail = std::min(best_tail, tail);
+  }
+  r.pen_down = pen_down;
+  r.core_percent = 100.0 * best_down / (static_cast<double>(pen_down) / kFs);
+  r.tail_core_percent = 100.0 * best_tail / kTailS;
+  if (!stats) return r;
+  // Instrumented pass, one frame at a time (the output does not depend on the block size).
+  scene.Reset();
+  std::size_t next = 0;
+  for (long f = 0; f < frames; ++f) {
+    std::size_t first = next;
+    while (next < commands.size() && commands[next].frame <= f) ++next;
+    std::vector<synth::ProbeCommand> now;
+    for (std::size_t i = first; i < next; ++i) {
+      now.push_back(commands[i].command);
+      now.back().frame_offset = 0;
+    }
+    scene.Process(now.data(), static_cast<int>(now.size()), out.data(), 1);
+    const synth::SceneProbeState st = scene.probe_state();
+    if (f < pen_down) {
+      if (st.touched) ++r.contact;
+      if (st.felt_profile_m > 0.0) ++r.felt;
+      ++r.substeps[st.active ? st.substeps : 0];
+    } else {
+      ++r.tail;
+      if (scene.skipping_idle()) ++r.idle;
+    }
+  }
+  return r;
+}
+
+std::string SubstepMix(const std::map<int, long>& mix, long total) {
+  std::ostringstream s;
+  bool first = true;
+  for (const auto& [n, count] : mix) {
+    const double share = 100.0 * static_cast<double>(count) / static_cast<double>(total);
+    if (share < 0.05) continue;
+    char item[48];
+    std::snprintf(item, sizeof item, "%s×%d %.1f %%", first ? "" : ", ", n, share);
+    s << item;
+    first = false;
+  }
+  return s.str();
+}
+
+struct Options {
+  int strokes = 200;
+  unsigned seed = 2026;
+  int reps = 3;
+  bool quick = false;
+  bool stats = true;  // --cost-only: no instrumented pass (profiling)
+  std::string docs = SAS_DOCS_DIR;
+  std::string textures = SAS_TEXTURES_DIR;
+};
+
+Options ParseArgs(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--strokes") {
+      o.strokes = std::max(3, std::atoi(value().c_str()));
+    } else if (a == "--seed") {
+      o.seed = static_cast<unsigned>(std::strtoul(value().c_str(), nullptr, 10));
+    } else if (a == "--reps") {
+      o.reps = std::max(1, std::atoi(value().c_str()));
+    } else if (a == "--docs") {
+      o.docs = value();
+    } else if (a == "--textures") {
+      o.textures = value();
+    } else if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--cost-only") {
+      o.stats = false;
+    } else if (a == "--help" || a == "-h") {
+      std::printf(
+          "usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR|-] "
+          "[--textures DIR] [--quick] [--cost-only]\n");
+      std::exit(0);
+    } else {
+      std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
+      std::exit(2);
+    }
+  }
+  if (o.quick) {
+    o.strokes = std::min(o.strokes, 30);
+    o.reps = 1;
+  }
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = ParseArgs(argc, argv);
+  const auto population = kiosk::VisitorPopulation(opt.strokes, opt.seed);
+  const kiosk::KioskConfig config;
+  const auto dirs = kiosk::MaterialSearchDirs("");
+  std::vector<Texture> textures;
+  for (const std::string& key : kiosk::KioskTextureNames()) {
+    Texture t;
+    t.loaded = surface::LoadTexture(
+        (std::filesystem::path(opt.textures) / key / "texture.toml").string());
+    t.name = t.loaded.file.name;
+    t.material = kiosk::FindMaterial(t.loaded.file.material, dirs).params;
+    t.output = kiosk::KioskOutputParams(config, t.loaded.file.gains);
+    t.relief_m = kiosk::ReliefM(*t.loaded.field);
+    textures.push_back(std::move(t));
+  }
+
+  struct Summary {
+    std::string name, material;
+    double median = 0, p95 = 0, worst = 0, tail_median = 0;
+    std::string worst_stroke;
+    double contact = 0, felt = 0, idle = 0;
+    std::string mix;
+    std::map<std::string, std::vector<double>> by_style;
+    int oversample = 1;
+  };
+  std::vector<Summary> summaries;
+  std::vector<double> all_costs;
+  std::map<int, long> all_mix;
+  long all_down = 0, all_contact = 0, all_felt = 0, all_tail = 0, all_idle = 0;
+  bool unfelt = false;
+  for (const Texture& tex : textures) {
+    synth::Scene scene;
+    scene.Init(kFs);
+    scene.Prepare(tex.material, tex.output, tex.loaded.field->View());
+    Summary s;
+    s.name = tex.name;
+    s.material = tex.loaded.file.material;
+    s.oversample = scene.contact_oversample();
+    std::vector<double> costs, tails;
+    std::map<int, long> mix;
+    long down = 0, contact = 0, felt = 0, tail = 0, idle = 0;
+    double worst = -1.0;
+    for (std::size_t i = 0; i < population.size(); ++i) {
+      const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats);
+      costs.push_back(r.core_percent);
+      s.by_style[r.style].push_back(r.core_percent);
+      tails.push_back(r.tail_core_percent);
+      if (r.core_percent > worst) {
+        worst = r.core_percent;
+        const auto& p = population[i].pen;
+        char what[160];
+        std::snprintf(what, sizeof what, "#%zu %s, %.0f mm/s, p %.2f, tilt %.0f°, %.2f s", i,
+                      r.style.c_str(),
+                      std::hypot((p.x1 - p.x0) * kScreenW, (p.y1 - p.y0) * kScreenH) *
+                          surface::DisplayGeometry{}.pixel_pitch_mm() / p.duration_s,
+                      p.pressure, p.tilt_deg, p.duration_s);
+        s.worst_stroke = what;
+      }
+      down += r.pen_down;
+      contact += r.contact;
+      felt += r.felt;
+      tail += r.tail;
+      idle += r.idle;
+      for (const auto& [n, c] : r.substeps) {
+        mix[n] += c;
+        all_mix[n] += c;
+      }
+    }
+    s.median = Percentile(costs, 0.5);
+    s.p95 = Percentile(costs, 0.95);
+    s.worst = worst;
+    s.tail_median = Percentile(tails, 0.5);
+    s.contact = static_cast<double>(contact) / static_cast<double>(down);
+    s.felt = static_cast<double>(felt) / static_cast<double>(down);
+    s.idle = static_cast<double>(idle) / static_cast<double>(tail);
+    s.mix = SubstepMix(mix, down);
+    all_costs.insert(all_costs.end(), costs.begin(), costs.end());
+    all_down += down;
+    all_contact += contact;
+    all_felt += felt;
+    all_tail += tail;
+    all_idle += idle;
+    if (felt == 0) unfelt = true;
+    std::printf(
+        "%-16s median %.3f %%  p95 %.3f %%  worst %.3f %% (%s)  contact %.1f %%  felt %.1f %%  "
+        "ring-out idle %.1f %%\n",
+        s.name.c_str(), s.median, s.p95, s.worst, s.worst_stroke.c_str(), 100.0 * s.contact,
+        100.0 * s.felt, 100.0 * s.idle);
+    std::printf("  sub-steps (share of pen-down samples; ×0 = probe parked): %s\n", s.mix.c_str());
+    for (const auto& [style, v] : s.by_style) {
+      std::printf("  %-6s median %.3f %%  p95 %.3f %%  worst %.3f %%\n", style.c_str(),
+                  Percentile(v, 0.5), Percentile(v, 0.95), *std::max_element(v.begin(), v.end()));
+    }
+    std::fflush(stdout);
+    summaries.push_back(s);
+  }
+  const double p95 = Percentile(all_costs, 0.95);
+  const double worst = *std::max_element(all_costs.begin(), all_costs.end());
+  const double median = Percentile(all_costs, 0.5);
+  const bool p95_ok = p95 <= 1.0, worst_ok = worst <= 2.0;
+
+  std::ostringstream md;
+  char line[640];
+  md << "# Synth cost over visitor strokes\n\n"
+        "Written by `visitor_bench"
+     << (opt.quick ? " --quick" : "")
+     << "` (tests/bench/visitor_bench.cpp); do not edit. "
+     << opt.strokes << " strokes from seed " << opt.seed
+     << " (kiosk/texture_levels.h VisitorPopulation, the population of `population_levels`: "
+        "scrape / rub / roll, 20–400 mm/s, pressure 0.1–0.9, 0.3–1.5 s, random places and "
+        "directions), each played on each kiosk texture (its picture-derived height field, its "
+        "material, the kiosk's output gains) with the kiosk's pen mapping at 200 Hz, 48 kHz, "
+        "128-frame blocks. Cost: thread CPU time of the pen-down span (best of "
+     << opt.reps
+     << " after a warm-up) over its duration, in % of one core of the build machine. Contact: "
+        "pen-down samples where a contact force acted. Felt: pen-down samples where the felt "
+        "profile (penetration threshold applied, micro-roughness excluded) is nonzero — the probe "
+        "feels the texture. Sub-steps: share of pen-down samples by contact sub-steps per sample "
+        "(×0: the probe parked). Ring-out: the "
+     << kTailS
+     << " s after the lift; its idle share is the samples the scene skipped as silent. Bubble "
+        "pops are not simulated.\n\n"
+        "| texture (material) | median % | p95 % | worst % (stroke) | contact | felt | sub-steps "
+        "| ring-out median % | ring-out idle |\n|---|---:|---:|---|---:|---:|---|---:|---:|\n";
+  for (const Summary& s : summaries) {
+    std::snprintf(line, sizeof line,
+                  "| %s (%s) | %.3f | %.3f | %.3f (%s) | %.1f %% | %.1f %% | %s | %.3f | %.1f %% |\n",
+                  s.name.c_str(), s.material.c_str(), s.median, s.p95, s.worst,
+                  s.worst_stroke.c_str(), 100.0 * s.contact, 100.0 * s.felt, s.mix.c_str(),
+                  s.tail_median, 100.0 * s.idle);
+    md << line;
+  }
+  std::snprintf(
+      line, sizeof line,
+      "| all | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %s | | %.1f %% |\n\n"
+      "Targets (DESIGN.md §4): 95th-percentile stroke ≤ 1 %% of one core: **%s** (%.3f %%); worst "
+      "≤ 2 %%: **%s** (%.3f %%).\n",
+      median, p95, worst, 100.0 * static_cast<double>(all_contact) / static_cast<double>(all_down),
+      100.0 * static_cast<double>(all_felt) / static_cast<double>(all_down),
+      SubstepMix(all_mix, all_down).c_str(),
+      100.0 * static_cast<double>(all_idle) / static_cast<double>(all_tail),
+      p95_ok ? "holds" : "does not hold", p95, worst_ok ? "holds" : "does not hold", worst);
+  md << line;
+  std::printf("%s", md.str().c_str());
+  if (opt.docs != "-") {
+    std::filesystem::create_directories(opt.docs);
+    const auto path = std::filesystem::path(opt.docs) / "visitor-bench.md";
+    std::ofstream(path) << md.str();
+    std::printf("wrote %s\n", path.c_str());
+  }
+  if (unfelt && opt.stats) {
+    std::fprintf(stderr, "a texture's strokes never felt its profile: not a visitor benchmark\n");
+    return 1;
+  }
+  return 0;
+}
