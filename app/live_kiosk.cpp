@@ -11,6 +11,7 @@
 #include "live_kiosk.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -68,21 +69,44 @@ std::string Fixed(double value, int decimals) {
   return text;
 }
 
-// The staff panel's buttons (tapped with the pen or the mouse while the panel is open).
+// The staff panel's buttons (tapped with the pen or the mouse while the panel is open), in one
+// row along its bottom edge.
+enum class StaffButton {
+  kTone,
+  kSweep,
+  kLowVibration,
+  kVolumeDown,
+  kVolumeUp,
+  kVibrationDown,
+  kVibrationUp,
+  kCount
+};
+
 struct StaffButtons {
-  ui::PixelRect tone;
-  ui::PixelRect sweep;
-  ui::PixelRect low_vibration;  // toggles the staff's low-vibration mode
+  std::array<ui::PixelRect, static_cast<std::size_t>(StaffButton::kCount)> rects;
+  const ui::PixelRect& operator[](StaffButton b) const {
+    return rects[static_cast<std::size_t>(b)];
+  }
+  // The button under (x, y), or kCount.
+  StaffButton At(int x, int y) const {
+    for (std::size_t i = 0; i < rects.size(); ++i) {
+      if (rects[i].Contains(x, y)) return static_cast<StaffButton>(i);
+    }
+    return StaffButton::kCount;
+  }
 };
 
 StaffButtons StaffButtonRects(int width, int height) {
   const ui::PixelRect panel = ui::StaffPanelRect(width, height);
-  const int h = 44, gap = 16;
-  const int w = std::min(260, (panel.w - 4 * gap) / 3);
+  constexpr int kCount = static_cast<int>(StaffButton::kCount);
+  const int h = 44, gap = 12;
+  const int w = std::min(200, (panel.w - (kCount + 1) * gap) / kCount);
   const int y = panel.y + panel.h - h - gap;
-  return {{panel.x + gap, y, w, h},
-          {panel.x + 2 * gap + w, y, w, h},
-          {panel.x + 3 * gap + 2 * w, y, w, h}};
+  StaffButtons buttons;
+  for (int i = 0; i < kCount; ++i) {
+    buttons.rects[static_cast<std::size_t>(i)] = {panel.x + gap + i * (gap + w), y, w, h};
+  }
+  return buttons;
 }
 
 class StaffPanel {
@@ -196,14 +220,26 @@ class StaffPanel {
              std::to_string(in.engine->cues_loaded()),
          white);
     line(in.config_line, white);
+    const auto& staff = in.engine->staff_settings();
+    line("VOLUME " + Fixed(staff.volume_db, 0) + " DB, VIBRATION " + Fixed(staff.vibration_db, 0) +
+             " DB",
+         white);
     const StaffButtons buttons = StaffButtonRects(width, height);
-    const char* low_vibration_label = in.engine->low_vibration() ? "LOW VIB: ON" : "LOW VIB: OFF";
-    for (const auto& [rect, label] :
-         {std::pair{buttons.tone, "TEST TONE"}, std::pair{buttons.sweep, "SWEEP"},
-          std::pair{buttons.low_vibration, low_vibration_label}}) {
+    const char* low_vibration_label = in.engine->low_vibration() ? "LOW VIB ON" : "LOW VIB OFF";
+    for (const auto& [button, label] :
+         {std::pair{StaffButton::kTone, "TEST TONE"}, std::pair{StaffButton::kSweep, "SWEEP"},
+          std::pair{StaffButton::kLowVibration, low_vibration_label},
+          std::pair{StaffButton::kVolumeDown, "VOLUME -"},
+          std::pair{StaffButton::kVolumeUp, "VOLUME +"},
+          std::pair{StaffButton::kVibrationDown, "VIB -"},
+          std::pair{StaffButton::kVibrationUp, "VIB +"}}) {
+      const ui::PixelRect& rect = buttons[button];
       overlays_.push_back({rect, {60, 90, 140, 255}});
-      ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, 2)) / 2,
-                  rect.y + (rect.h - ui::kGlyphHeight * 2) / 2, 2, label, white);
+      // Seven buttons share a 720p panel's width: a label that does not fit goes down a size.
+      const int label_scale = ui::TextWidth(label, 2) <= rect.w - 8 ? 2 : 1;
+      ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, label_scale)) / 2,
+                  rect.y + (rect.h - ui::kGlyphHeight * label_scale) / 2, label_scale, label,
+                  white);
     }
     return overlays_;
   }
@@ -283,6 +319,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   engine_options.screen_width_px = width;
   engine_options.screen_height_px = height;
   engine_options.counters_path = (fs::path(options.state_dir) / "counters.toml").string();
+  engine_options.staff_settings_path = (fs::path(options.state_dir) / "staff.toml").string();
+  engine_options.attract_stroke = config.attract_passive_stroke;
   std::unique_ptr<kiosk::KioskEngine> engine;
   std::unique_ptr<VisitView> view;
   try {
@@ -387,24 +425,45 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     view->OnStylus(s);
     // While the staff panel is open the pen works its buttons; elsewhere it still explores.
     if (window.staff_panel_open() && s.tip_down) {
-      const int x = static_cast<int>(s.x_px), y = static_cast<int>(s.y_px);
-      if (buttons.tone.Contains(x, y) || buttons.sweep.Contains(x, y) ||
-          buttons.low_vibration.Contains(x, y)) {
+      const StaffButton button = buttons.At(static_cast<int>(s.x_px), static_cast<int>(s.y_px));
+      if (button != StaffButton::kCount) {
         static std::int64_t last_press_ns = 0;
         if (s.time_ns - last_press_ns > 500 * platform::kNsPerMs) {
           last_press_ns = s.time_ns;
-          if (buttons.tone.Contains(x, y)) {
-            engine->PlayTestTone();
-            log.Info("staff", "test tone on the speaker");
-          } else if (buttons.sweep.Contains(x, y)) {
-            engine->PlayTransducerSweep();
-            log.Info("staff", "sweep on the transducer");
-          } else {
-            engine->SetLowVibration(!engine->low_vibration());
-            log.Info("staff",
-                     engine->low_vibration() ? "low-vibration mode on" : "low-vibration mode off");
-            view->view().Invalidate();
+          engine->OnStaffActivity(s.time_ns);
+          const auto gains_line = [&] {
+            const auto& staff_settings = engine->staff_settings();
+            log.Info("staff", "volume " + Fixed(staff_settings.volume_db, 0) + " dB, vibration " +
+                                  Fixed(staff_settings.vibration_db, 0) + " dB");
+          };
+          switch (button) {
+            case StaffButton::kTone:
+              engine->PlayTestTone();
+              log.Info("staff", "test tone on the speaker");
+              break;
+            case StaffButton::kSweep:
+              engine->PlayTransducerSweep();
+              log.Info("staff", "sweep on the transducer");
+              break;
+            case StaffButton::kLowVibration:
+              engine->SetLowVibration(!engine->low_vibration());
+              log.Info("staff", engine->low_vibration() ? "low-vibration mode on"
+                                                        : "low-vibration mode off");
+              break;
+            case StaffButton::kVolumeDown:
+            case StaffButton::kVolumeUp:
+              engine->StepVolume(button == StaffButton::kVolumeUp ? 1 : -1);
+              gains_line();
+              break;
+            case StaffButton::kVibrationDown:
+            case StaffButton::kVibrationUp:
+              engine->StepVibration(button == StaffButton::kVibrationUp ? 1 : -1);
+              gains_line();
+              break;
+            case StaffButton::kCount:
+              break;
           }
+          view->view().Invalidate();
         }
         return;
       }
@@ -416,6 +475,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // screen is up, a few times a second.
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
+  bool passive_shown = false;  // the view is drawing the passive stroke's dent
 
   while (!control.HandleSignals()) {
     const std::int64_t pass_start_ns = platform::MonotonicNowNs();
@@ -436,6 +496,12 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
           break;
         case Kind::kRecordKey:
           switches.keyboard->OnKey('r', event.pressed, event.time_ns);
+          break;
+        case Kind::kLanguageKey:
+          if (engine->NextLanguage(event.time_ns)) {
+            log.Info("session", "language " + engine->language());
+            view->view().Invalidate();
+          }
           break;
         case Kind::kStaffChord:
           engine->OnStaffChord(event.time_ns);
@@ -461,12 +527,40 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       stylus_to_engine(s);
     });
     if (!actions.empty()) view->Apply(actions, now_s);
+    // The passive stroke's dent travels with its virtual probe (drawn like a pen's).
+    if (const auto passive = engine->passive_pen()) {
+      ui::StylusSample s;
+      s.time_ns = passive->time_ns;
+      s.x_px = static_cast<float>(passive->x_px);
+      s.y_px = static_cast<float>(passive->y_px);
+      s.tip_down = true;
+      s.pressure = static_cast<float>(passive->pressure);
+      s.source = ui::StylusSource::kPen;
+      view->OnStylus(s);
+      passive_shown = true;
+    } else if (passive_shown) {
+      passive_shown = false;
+      ui::StylusSample s;
+      s.time_ns = now_ns;
+      s.x_px = last_pen.x_px;
+      s.y_px = last_pen.y_px;
+      view->OnStylus(s);  // lifted
+    }
+    // The session decides whether the panel is open (it closes a forgotten one by itself).
+    if (window.staff_panel_open() != engine->session().staff_panel_open()) {
+      window.set_staff_panel_open(engine->session().staff_panel_open());
+      if (!window.staff_panel_open()) log.Info("staff", "staff panel closed (timeout)");
+      view->view().Invalidate();
+    }
     if (config.ambient_adaptive && engine->recorder_present() && now_s - ambient_last_s >= 0.25) {
       const double dt_s = ambient_last_s < 0.0 ? 0.25 : now_s - ambient_last_s;
       ambient_last_s = now_s;
       const double level = std::max(static_cast<double>(engine->mic_level()), 1e-6);
-      ambient.Update(20.0 * std::log10(level), dt_s,
-                     engine->session().mode() == kiosk::SessionMode::kAttract);
+      // Only while the kiosk itself is quiet (between passive strokes, no cue): the microphone
+      // would otherwise hear the box and turn it up further.
+      ambient.Update(
+          20.0 * std::log10(level), dt_s,
+          engine->session().mode() == kiosk::SessionMode::kAttract && engine->AmbientListening());
       engine->SetAmbientGainDb(ambient.gain_db());
     }
 

@@ -171,7 +171,8 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
   }
   if (session.mode() == kiosk::SessionMode::kCountdown) {
     const double left = session.SecondsLeft(now_s);
-    ui::AddCountdownBar(overlays, width_, height_, static_cast<float>(left / 3.0));
+    ui::AddCountdownBar(overlays, width_, height_,
+                        static_cast<float>(left / std::max(session.config().countdown_s, 1e-3)));
     ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
   } else if (session.mode() == kiosk::SessionMode::kRecording) {
     ui::AddRecordingDot(overlays, width_, height_);

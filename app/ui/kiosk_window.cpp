@@ -254,6 +254,11 @@ struct KioskWindow::Impl {
       e.time_ns = t;
       e.pressed = down;
       out.push_back(e);
+    } else if (code == SDLK_l && down) {
+      UiEvent e;
+      e.kind = UiEvent::Kind::kLanguageKey;
+      e.time_ns = t;
+      out.push_back(e);
     }
     // Everything else — Escape, Alt-F4, Ctrl-Q, Ctrl-W... — is deliberately ignored.
   }

@@ -66,6 +66,12 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.sound_gain_db == defaults.sound_gain_db);
   CHECK(shipped.haptic_gain_db == defaults.haptic_gain_db);
   CHECK(shipped.idle_timeout_s == defaults.idle_timeout_s);
+  CHECK(shipped.staff_panel_timeout_s == defaults.staff_panel_timeout_s);
+  CHECK(shipped.language == defaults.language);
+  CHECK(shipped.describe_after_rest_s == defaults.describe_after_rest_s);
+  CHECK(shipped.attract_passive_stroke == defaults.attract_passive_stroke);
+  CHECK(shipped.invitation_interval_s == defaults.invitation_interval_s);
+  CHECK(shipped.visitor_languages == defaults.visitor_languages);
   CHECK(shipped.default_texture == defaults.default_texture);
   CHECK(shipped.reopen_backoff_max_s == defaults.reopen_backoff_max_s);
   CHECK(shipped.record_silence_rms_dbfs == defaults.record_silence_rms_dbfs);
