@@ -242,7 +242,7 @@ TEST_CASE(
              Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
   CHECK_THAT(
       sas::kiosk::ConfigStatusLine(path, loaded),
-      Catch::StartsWith("CONFIG: " + path + " BAD, USING THE LAST GOOD ONE: " + path + ":3:"));
+      Catch::StartsWith("Config: " + path + " bad, using the last good one: " + path + ":3:"));
 
   // No last good copy: the built-in defaults, and it says so, key included.
   sas::platform::DeviceStatusBoard fresh(log);
@@ -255,5 +255,5 @@ TEST_CASE(
              Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
                  Catch::EndsWith("(using the built-in defaults)"));
   CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
-             Catch::Contains(" NOT USED, DEFAULTS: " + path + ":2: session.idle_timeout_s: "));
+             Catch::Contains(" not used, defaults: " + path + ":2: session.idle_timeout_s: "));
 }
