@@ -219,7 +219,9 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     const int thickness = 6 + static_cast<int>(10 * breath);
     ui::AddFrame(overlays, {0, 0, width_, height_}, thickness,
                  {255, 255, 255, static_cast<std::uint8_t>(60 + 100 * breath)});
-    if (ttf) {
+    if (staff_panel_open) {
+      // The panel covers the middle: no invitation under its lines.
+    } else if (ttf) {
       plates_.push_back(AddPlate(overlays,
                                  {{strings.Screen("attract_title"), title_px, true},
                                   {strings.Screen("attract_pen"), body_px, false}},
