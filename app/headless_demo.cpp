@@ -320,6 +320,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
       return 1;
     }
     visit.SavePlain("voice_surface");
+    visit.Run(4.1);  // the "now scratch your voice" banner has gone: the snapshot shows the dent
     report += visit.DoStroke("voice_scrape", {0.15, 0.4, 0.85, 0.45, 0.0, 0.7, 0.0, {}});
 
     // Nobody touches it: the idle reset wipes the voice and shows the default texture.

@@ -11,6 +11,7 @@
 #include "live_kiosk.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +39,7 @@
 #include "ui/kiosk_window.h"
 #include "ui/overlay.h"
 #include "ui/text.h"
+#include "ui/ttf_text.h"
 #include "visit_view.h"
 
 namespace sas::app {
@@ -68,21 +70,44 @@ std::string Fixed(double value, int decimals) {
   return text;
 }
 
-// The staff panel's buttons (tapped with the pen or the mouse while the panel is open).
+// The staff panel's buttons (tapped with the pen or the mouse while the panel is open), in one
+// row along its bottom edge.
+enum class StaffButton {
+  kTone,
+  kSweep,
+  kLowVibration,
+  kVolumeDown,
+  kVolumeUp,
+  kVibrationDown,
+  kVibrationUp,
+  kCount
+};
+
 struct StaffButtons {
-  ui::PixelRect tone;
-  ui::PixelRect sweep;
-  ui::PixelRect low_vibration;  // toggles the staff's low-vibration mode
+  std::array<ui::PixelRect, static_cast<std::size_t>(StaffButton::kCount)> rects;
+  const ui::PixelRect& operator[](StaffButton b) const {
+    return rects[static_cast<std::size_t>(b)];
+  }
+  // The button under (x, y), or kCount.
+  StaffButton At(int x, int y) const {
+    for (std::size_t i = 0; i < rects.size(); ++i) {
+      if (rects[i].Contains(x, y)) return static_cast<StaffButton>(i);
+    }
+    return StaffButton::kCount;
+  }
 };
 
 StaffButtons StaffButtonRects(int width, int height) {
   const ui::PixelRect panel = ui::StaffPanelRect(width, height);
-  const int h = 44, gap = 16;
-  const int w = std::min(260, (panel.w - 4 * gap) / 3);
+  constexpr int kCount = static_cast<int>(StaffButton::kCount);
+  const int h = 44, gap = 12;
+  const int w = std::min(200, (panel.w - (kCount + 1) * gap) / kCount);
   const int y = panel.y + panel.h - h - gap;
-  return {{panel.x + gap, y, w, h},
-          {panel.x + 2 * gap + w, y, w, h},
-          {panel.x + 3 * gap + 2 * w, y, w, h}};
+  StaffButtons buttons;
+  for (int i = 0; i < kCount; ++i) {
+    buttons.rects[static_cast<std::size_t>(i)] = {panel.x + gap + i * (gap + w), y, w, h};
+  }
+  return buttons;
 }
 
 class StaffPanel {
@@ -101,34 +126,47 @@ class StaffPanel {
   };
 
   // Rebuilds the panel's text at most 4 times a second (a frame is drawn only when it changed).
-  const ui::Overlays& Build(const Inputs& in, int width, int height, double now_s) {
+  // Normal case, so paths read as they are and can be typed from the journal line it repeats;
+  // lines wrap at spaces; the size follows the screen (16 px at 720p, 24 px at 1080p).
+  const ui::Overlays& Build(const Inputs& in, ui::TextRenderer& text, int width, int height,
+                            double now_s) {
     if (now_s - built_s_ < 0.25 && !overlays_.empty()) return overlays_;
     built_s_ = now_s;
     overlays_.clear();
     const ui::PixelRect panel = ui::StaffPanelRect(width, height);
+    const bool ttf = text.Available();
+    const int size_px = std::max(16, height / 45);
     const int scale = panel.w >= 1100 ? 2 : 1;
-    const int line_h = (ui::kGlyphHeight + 4) * scale;
-    const int max_chars = (panel.w - 32) / (ui::kGlyphAdvance * scale);
+    const int line_h = ttf ? text.LineHeight(size_px) : (ui::kGlyphHeight + 4) * scale;
+    const int bottom = panel.y + panel.h - 80;
     int y = panel.y + 16;
     const ui::Rgba white{235, 235, 235, 255};
     const ui::Rgba amber{250, 190, 60, 255};
-    const auto line = [&](std::string text, ui::Rgba color) {
-      // A long status (a rejected configuration's file:line: key: what) wraps onto up to two
-      // more rows rather than losing its end, where the reason is.
-      for (int row = 0; row < 2 && static_cast<int>(text.size()) > max_chars; ++row) {
-        if (y + line_h > panel.y + panel.h - 80) return;
+    const auto line = [&](const std::string& content, ui::Rgba color) {
+      if (!ttf) {
+        // The bitmap fallback: capitals, cut at the panel's edge.
+        const int max_chars = (panel.w - 32) / (ui::kGlyphAdvance * scale);
+        if (y + line_h > bottom) return;
         ui::AddText(overlays_, panel.x + 16, y, scale,
-                    text.substr(0, static_cast<std::size_t>(max_chars)), color);
+                    content.substr(0, static_cast<std::size_t>(std::max(0, max_chars))), color);
         y += line_h;
-        text = "    " + text.substr(static_cast<std::size_t>(max_chars));
+        return;
       }
-      if (static_cast<int>(text.size()) > max_chars)
-        text.resize(static_cast<std::size_t>(max_chars));
-      if (y + line_h > panel.y + panel.h - 80) return;
-      ui::AddText(overlays_, panel.x + 16, y, scale, text, color);
-      y += line_h;
+      // A long status (a rejected configuration's file:line: key: what) wraps rather than losing
+      // its end, where the reason is; continuation lines are indented.
+      bool first = true;
+      for (const auto& row : text.Wrap(content, size_px, panel.w - 32 - (first ? 0 : 24))) {
+        if (y + line_h > bottom) return;
+        if (auto mask = text.Render(row, size_px)) {
+          overlays_.push_back(
+              {{panel.x + 16 + (first ? 0 : 24), y, mask->w, mask->h}, color, std::move(mask)});
+        }
+        first = false;
+        y += line_h;
+      }
     };
-    line(std::string("SKETCH-A-SCRATCH ") + kVersion + " - STAFF PANEL (CHORD AGAIN TO CLOSE)",
+    line(std::string("Sketch-a-Scratch ") + kVersion +
+             " - staff panel (the staff chord again closes it)",
          amber);
     for (const auto& status : in.board->All()) {
       line(status.device + ": " + platform::DeviceStateName(status.state) +
@@ -137,73 +175,95 @@ class StaffPanel {
     }
     const auto stats = in.output->Stats();
     const double buffer_ms = 1e3 * in.buffer_frames / in.sample_rate_hz;
-    line("AUDIO: " + std::string(in.output->Running() ? "RUNNING" : "SILENT (NO DEVICE)") +
-             ", XRUNS " + std::to_string(stats.xruns) + ", CALLBACK LOAD " +
+    line("Audio: " + std::string(in.output->Running() ? "running" : "silent (no device)") +
+             ", xruns " + std::to_string(stats.xruns) + ", callback load " +
              Fixed(100.0 * static_cast<double>(stats.last_callback_ns) * 1e-6 / buffer_ms, 1) +
-             "% (MAX " +
+             "% (max " +
              Fixed(100.0 * static_cast<double>(stats.max_callback_ns) * 1e-6 / buffer_ms, 1) +
-             "%) OF " + Fixed(buffer_ms, 2) + " MS",
+             "%) of " + Fixed(buffer_ms, 2) + " ms",
          white);
     const auto engine_stats = in.engine->audio_stats();
-    line("PEN EVENT -> FIRST OUTPUT SAMPLE: LAST " +
+    line("Pen event -> first output sample: last " +
              Fixed(static_cast<double>(engine_stats.pen_to_sample_last_ns) * 1e-6, 2) +
-             " MS, MAX " + Fixed(static_cast<double>(engine_stats.pen_to_sample_max_ns) * 1e-6, 2) +
-             " MS (TARGET " + Fixed(buffer_ms + 1.0, 2) + " MS), DROPPED " +
+             " ms, max " + Fixed(static_cast<double>(engine_stats.pen_to_sample_max_ns) * 1e-6, 2) +
+             " ms (target " + Fixed(buffer_ms + 1.0, 2) + " ms), dropped " +
              std::to_string(engine_stats.dropped_commands),
          white);
     // The dose, for staff (README, staff guide: turning it into dB SPL with a phone meter once).
     const auto leq = [](std::optional<double> db) {
-      return db ? Fixed(*db, 1) + " DBFS" : std::string("-");
+      return db ? Fixed(*db, 1) + " dBFS" : std::string("-");
     };
-    line("SPEAKER LEQ: LAST VISIT " + leq(in.engine->exposure().LastVisitDb()) + ", LAST HOUR " +
-             leq(in.engine->exposure().LastHourDb()) + " (SPEAKER CEILING " +
-             Fixed(in.engine->config().sound_ceiling_db, 1) + " DBTP)",
+    line("Speaker Leq: last visit " + leq(in.engine->exposure().LastVisitDb()) + ", last hour " +
+             leq(in.engine->exposure().LastHourDb()) + " (speaker ceiling " +
+             Fixed(in.engine->config().sound_ceiling_db, 1) + " dBTP)",
          white);
-    std::string tokens = "SWITCHES: " + std::string(in.switches->ActiveBackend()) + ", TOKENS";
+    std::string tokens = "Switches: " + std::string(in.switches->ActiveBackend()) + ", tokens";
     for (int t = 0; t < platform::kTokenCount; ++t) {
-      tokens += " " + std::to_string(t + 1) + (in.selector->Present(t) ? ":ON" : ":OFF");
+      tokens += " " + std::to_string(t + 1) + (in.selector->Present(t) ? ": on" : ": off");
     }
     tokens +=
-        ", RECORD " + std::string(in.record_down ? "DOWN" : "UP") + ", SHOWING " +
+        ", record " + std::string(in.record_down ? "down" : "up") + ", showing " +
         (in.engine->surface().voice
-             ? std::string("VOICE")
-             : in.engine->textures()[static_cast<std::size_t>(in.engine->surface().texture)].key);
+             ? std::string("the voice")
+             : in.engine->textures()[static_cast<std::size_t>(in.engine->surface().texture)].key) +
+        ", language " + in.engine->language();
     line(tokens, white);
     const float level = in.engine->mic_level();
-    line("MICROPHONE: " +
+    line("Microphone: " +
              std::string(in.engine->recorder_present()
-                             ? "LEVEL " +
-                                   (level > 0.0f ? Fixed(20.0 * std::log10(level), 1) : "-INF") +
-                                   " DBFS"
-                             : "NONE (RECORDING DISABLED)"),
+                             ? "level " +
+                                   (level > 0.0f ? Fixed(20.0 * std::log10(level), 1) : "-inf") +
+                                   " dBFS"
+                             : "none (recording disabled)"),
          white);
-    line("PEN: PRESSURE " + Fixed(in.pen.pressure, 2) + ", TILT " + Fixed(in.pen.TiltDeg(), 1) +
-             " DEG, AT " + Fixed(in.pen.x_px, 0) + "," + Fixed(in.pen.y_px, 0) +
-             (in.pen.source == ui::StylusSource::kPen     ? " (TABLET)"
-              : in.pen.source == ui::StylusSource::kTouch ? " (TOUCH)"
-                                                          : " (MOUSE)"),
+    line("Pen: pressure " + Fixed(in.pen.pressure, 2) + ", tilt " + Fixed(in.pen.TiltDeg(), 1) +
+             " deg, at " + Fixed(in.pen.x_px, 0) + "," + Fixed(in.pen.y_px, 0) +
+             (in.pen.source == ui::StylusSource::kPen     ? " (tablet)"
+              : in.pen.source == ui::StylusSource::kTouch ? " (touch)"
+                                                          : " (mouse)"),
          white);
     const auto& counters = in.engine->session().counters();
-    std::string strokes = "STROKES:";
+    std::string strokes = "Strokes:";
     for (std::size_t t = 0; t < counters.strokes_per_texture.size(); ++t) {
       strokes += " " + in.engine->textures()[t].key + " " +
                  std::to_string(counters.strokes_per_texture[t]);
     }
-    line(strokes + ", VOICE " + std::to_string(counters.voice_strokes), white);
-    line("RECORDINGS " + std::to_string(counters.recordings) + " (FAILED " +
-             std::to_string(counters.failed_recordings) + "), VISITS " +
-             std::to_string(counters.sessions) + ", CUES " +
+    line(strokes + ", voice " + std::to_string(counters.voice_strokes), white);
+    line("Recordings " + std::to_string(counters.recordings) + " (failed " +
+             std::to_string(counters.failed_recordings) + "), visits " +
+             std::to_string(counters.sessions) + ", cues " +
              std::to_string(in.engine->cues_loaded()),
          white);
     line(in.config_line, white);
+    const auto& staff = in.engine->staff_settings();
+    line("Volume " + Fixed(staff.volume_db, 0) + " dB, vibration " + Fixed(staff.vibration_db, 0) +
+             " dB",
+         white);
     const StaffButtons buttons = StaffButtonRects(width, height);
-    const char* low_vibration_label = in.engine->low_vibration() ? "LOW VIB: ON" : "LOW VIB: OFF";
-    for (const auto& [rect, label] :
-         {std::pair{buttons.tone, "TEST TONE"}, std::pair{buttons.sweep, "SWEEP"},
-          std::pair{buttons.low_vibration, low_vibration_label}}) {
+    const char* low_vibration_label = in.engine->low_vibration() ? "Low vib on" : "Low vib off";
+    for (const auto& [button, label] :
+         {std::pair{StaffButton::kTone, "Test tone"}, std::pair{StaffButton::kSweep, "Sweep"},
+          std::pair{StaffButton::kLowVibration, low_vibration_label},
+          std::pair{StaffButton::kVolumeDown, "Volume -"},
+          std::pair{StaffButton::kVolumeUp, "Volume +"},
+          std::pair{StaffButton::kVibrationDown, "Vib -"},
+          std::pair{StaffButton::kVibrationUp, "Vib +"}}) {
+      const ui::PixelRect& rect = buttons[button];
       overlays_.push_back({rect, {60, 90, 140, 255}});
-      ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, 2)) / 2,
-                  rect.y + (rect.h - ui::kGlyphHeight * 2) / 2, 2, label, white);
+      if (ttf) {
+        if (auto mask = text.Render(label, std::min(size_px, rect.h * 6 / 10), true)) {
+          overlays_.push_back(
+              {{rect.x + (rect.w - mask->w) / 2, rect.y + (rect.h - mask->h) / 2, mask->w, mask->h},
+               white,
+               std::move(mask)});
+        }
+        continue;
+      }
+      // Seven buttons share a 720p panel's width: a label that does not fit goes down a size.
+      const int label_scale = ui::TextWidth(label, 2) <= rect.w - 8 ? 2 : 1;
+      ui::AddText(overlays_, rect.x + (rect.w - ui::TextWidth(label, label_scale)) / 2,
+                  rect.y + (rect.h - ui::kGlyphHeight * label_scale) / 2, label_scale, label,
+                  white);
     }
     return overlays_;
   }
@@ -283,6 +343,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   engine_options.screen_width_px = width;
   engine_options.screen_height_px = height;
   engine_options.counters_path = (fs::path(options.state_dir) / "counters.toml").string();
+  engine_options.staff_settings_path = (fs::path(options.state_dir) / "staff.toml").string();
+  engine_options.attract_stroke = config.attract_passive_stroke;
   std::unique_ptr<kiosk::KioskEngine> engine;
   std::unique_ptr<VisitView> view;
   try {
@@ -387,24 +449,45 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     view->OnStylus(s);
     // While the staff panel is open the pen works its buttons; elsewhere it still explores.
     if (window.staff_panel_open() && s.tip_down) {
-      const int x = static_cast<int>(s.x_px), y = static_cast<int>(s.y_px);
-      if (buttons.tone.Contains(x, y) || buttons.sweep.Contains(x, y) ||
-          buttons.low_vibration.Contains(x, y)) {
+      const StaffButton button = buttons.At(static_cast<int>(s.x_px), static_cast<int>(s.y_px));
+      if (button != StaffButton::kCount) {
         static std::int64_t last_press_ns = 0;
         if (s.time_ns - last_press_ns > 500 * platform::kNsPerMs) {
           last_press_ns = s.time_ns;
-          if (buttons.tone.Contains(x, y)) {
-            engine->PlayTestTone();
-            log.Info("staff", "test tone on the speaker");
-          } else if (buttons.sweep.Contains(x, y)) {
-            engine->PlayTransducerSweep();
-            log.Info("staff", "sweep on the transducer");
-          } else {
-            engine->SetLowVibration(!engine->low_vibration());
-            log.Info("staff",
-                     engine->low_vibration() ? "low-vibration mode on" : "low-vibration mode off");
-            view->view().Invalidate();
+          engine->OnStaffActivity(s.time_ns);
+          const auto gains_line = [&] {
+            const auto& staff_settings = engine->staff_settings();
+            log.Info("staff", "volume " + Fixed(staff_settings.volume_db, 0) + " dB, vibration " +
+                                  Fixed(staff_settings.vibration_db, 0) + " dB");
+          };
+          switch (button) {
+            case StaffButton::kTone:
+              engine->PlayTestTone();
+              log.Info("staff", "test tone on the speaker");
+              break;
+            case StaffButton::kSweep:
+              engine->PlayTransducerSweep();
+              log.Info("staff", "sweep on the transducer");
+              break;
+            case StaffButton::kLowVibration:
+              engine->SetLowVibration(!engine->low_vibration());
+              log.Info("staff", engine->low_vibration() ? "low-vibration mode on"
+                                                        : "low-vibration mode off");
+              break;
+            case StaffButton::kVolumeDown:
+            case StaffButton::kVolumeUp:
+              engine->StepVolume(button == StaffButton::kVolumeUp ? 1 : -1);
+              gains_line();
+              break;
+            case StaffButton::kVibrationDown:
+            case StaffButton::kVibrationUp:
+              engine->StepVibration(button == StaffButton::kVibrationUp ? 1 : -1);
+              gains_line();
+              break;
+            case StaffButton::kCount:
+              break;
           }
+          view->view().Invalidate();
         }
         return;
       }
@@ -416,6 +499,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // screen is up, a few times a second.
   kiosk::AmbientGain ambient(kiosk::AmbientGainConfigFrom(config));
   double ambient_last_s = -1.0;
+  bool passive_shown = false;  // the view is drawing the passive stroke's dent
 
   while (!control.HandleSignals()) {
     const std::int64_t pass_start_ns = platform::MonotonicNowNs();
@@ -436,6 +520,12 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
           break;
         case Kind::kRecordKey:
           switches.keyboard->OnKey('r', event.pressed, event.time_ns);
+          break;
+        case Kind::kLanguageKey:
+          if (engine->NextLanguage(event.time_ns)) {
+            log.Info("session", "language " + engine->language());
+            view->view().Invalidate();
+          }
           break;
         case Kind::kStaffChord:
           engine->OnStaffChord(event.time_ns);
@@ -461,12 +551,40 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       stylus_to_engine(s);
     });
     if (!actions.empty()) view->Apply(actions, now_s);
+    // The passive stroke's dent travels with its virtual probe (drawn like a pen's).
+    if (const auto passive = engine->passive_pen()) {
+      ui::StylusSample s;
+      s.time_ns = passive->time_ns;
+      s.x_px = static_cast<float>(passive->x_px);
+      s.y_px = static_cast<float>(passive->y_px);
+      s.tip_down = true;
+      s.pressure = static_cast<float>(passive->pressure);
+      s.source = ui::StylusSource::kPen;
+      view->OnStylus(s);
+      passive_shown = true;
+    } else if (passive_shown) {
+      passive_shown = false;
+      ui::StylusSample s;
+      s.time_ns = now_ns;
+      s.x_px = last_pen.x_px;
+      s.y_px = last_pen.y_px;
+      view->OnStylus(s);  // lifted
+    }
+    // The session decides whether the panel is open (it closes a forgotten one by itself).
+    if (window.staff_panel_open() != engine->session().staff_panel_open()) {
+      window.set_staff_panel_open(engine->session().staff_panel_open());
+      if (!window.staff_panel_open()) log.Info("staff", "staff panel closed (timeout)");
+      view->view().Invalidate();
+    }
     if (config.ambient_adaptive && engine->recorder_present() && now_s - ambient_last_s >= 0.25) {
       const double dt_s = ambient_last_s < 0.0 ? 0.25 : now_s - ambient_last_s;
       ambient_last_s = now_s;
       const double level = std::max(static_cast<double>(engine->mic_level()), 1e-6);
-      ambient.Update(20.0 * std::log10(level), dt_s,
-                     engine->session().mode() == kiosk::SessionMode::kAttract);
+      // Only while the kiosk itself is quiet (between passive strokes, no cue): the microphone
+      // would otherwise hear the box and turn it up further.
+      ambient.Update(
+          20.0 * std::log10(level), dt_s,
+          engine->session().mode() == kiosk::SessionMode::kAttract && engine->AmbientListening());
       engine->SetAmbientGainDb(ambient.gain_db());
     }
 
@@ -475,7 +593,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
       staff_overlays = staff.Build({engine.get(), output.get(), &board, &switches,
                                     &control.selector(), control.record_down(), last_pen,
                                     config_line, config.buffer_frames, config.sample_rate_hz},
-                                   width, height, now_s);
+                                   view->text(), width, height, now_s);
     }
     if (view->Advance(now_s, window.staff_panel_open(), std::move(staff_overlays))) {
       window.Present(view->view().TakeFrame());

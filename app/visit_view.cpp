@@ -124,16 +124,20 @@ void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double n
         // The spoken friendly messages also show on screen (a coloured banner) for a while.
         switch (action.cue) {
           case kiosk::Cue::kRecordingTooQuiet:
-            message_ = "too quiet: try again a little louder";
-            message_color_ = {40, 110, 220, 220};
+            message_ = "too_quiet";
+            message_color_ = {40, 110, 220, 255};
             break;
           case kiosk::Cue::kRecordingTooLoud:
-            message_ = "too loud: try again a little further away";
-            message_color_ = {240, 140, 30, 220};
+            message_ = "too_loud";
+            message_color_ = {240, 140, 30, 255};
             break;
           case kiosk::Cue::kRecordingUnavailable:
-            message_ = "recording is not available right now";
-            message_color_ = {120, 120, 120, 220};
+            message_ = "no_microphone";
+            message_color_ = {120, 120, 120, 255};
+            break;
+          case kiosk::Cue::kVoiceReady:
+            message_ = "voice_ready";
+            message_color_ = {40, 160, 80, 255};
             break;
           default:
             continue;
@@ -150,10 +154,61 @@ void VisitView::OnStylus(const ui::StylusSample& sample) {
   view_.OnStylus(sample);
 }
 
+const char* MeterWordKey(float level) {
+  const double db = 20.0 * std::log10(std::max(static_cast<double>(level), 1e-6));
+  if (db < kMeterLouderBelowDbfs) return "meter_louder";
+  if (db > kMeterTooLoudAboveDbfs) return "meter_too_loud";
+  return "meter_good";
+}
+
+int CountShown(const kiosk::SessionConfig& config, double seconds_left) {
+  const double tone_at = std::max(0.0, config.countdown_s - config.tone_s);
+  const double step = std::min(config.count_step_s, tone_at / 4.0);
+  const double elapsed = config.countdown_s - seconds_left;
+  if (elapsed < tone_at - 3.0 * step || elapsed >= tone_at) return 0;
+  return std::clamp(3 - static_cast<int>(std::floor((elapsed - (tone_at - 3.0 * step)) / step)), 1,
+                    3);
+}
+
+ui::PixelRect VisitView::AddPlate(ui::Overlays& overlays, const std::vector<PlateLine>& lines,
+                                  int centre_x, int centre_y) {
+  // Dark, nearly opaque, under every line: white text on it stays above 7:1 over any picture
+  // (even pure white under the plate: 14:1).
+  std::vector<std::shared_ptr<const ui::TextMask>> masks;
+  int w = 0, h = 0;
+  for (const auto& line : lines) {
+    for (const auto& wrapped : text_.Wrap(line.text, line.size_px, width_ * 8 / 10, line.bold)) {
+      auto mask = text_.Render(wrapped, line.size_px, line.bold);
+      if (!mask) continue;
+      w = std::max(w, mask->w);
+      h += mask->h;
+      masks.push_back(std::move(mask));
+    }
+  }
+  if (masks.empty()) return {};
+  const int pad = std::max(8, height_ / 60);
+  const ui::PixelRect plate{centre_x - w / 2 - 2 * pad, centre_y - h / 2 - pad, w + 4 * pad,
+                            h + 2 * pad};
+  overlays.push_back({plate, kPlateColor});
+  int y = plate.y + pad;
+  for (const auto& mask : masks) {
+    overlays.push_back({{centre_x - mask->w / 2, y, mask->w, mask->h}, kTextColor, mask});
+    y += mask->h;
+  }
+  return plate;
+}
+
 bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_extra) {
   SyncBubbles(now_s);
   ui::Overlays overlays;
+  plates_.clear();
   const auto& session = engine_->session();
+  const auto& strings = engine_->strings();
+  const bool ttf = text_.Available();
+  // Sizes follow the screen's height: the title's x-height is about 1/28 of it (8 mm on a 13-inch
+  // 720p panel, 11 mm on a 24-inch 1080p one), readable from 1.5 m.
+  const int title_px = std::max(24, height_ / 14);
+  const int body_px = std::max(18, height_ / 24);
   if (attract_) {
     // A gentle invitation: the screen breathes (a veil fading in and out every 4 s) and a soft
     // frame pulses around it. Quantised in time so an idle kiosk draws only a few frames a second.
@@ -164,26 +219,62 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     const int thickness = 6 + static_cast<int>(10 * breath);
     ui::AddFrame(overlays, {0, 0, width_, height_}, thickness,
                  {255, 255, 255, static_cast<std::uint8_t>(60 + 100 * breath)});
-    const int scale = std::max(2, width_ / 320);
-    const char* invite = "TOUCH THE PICTURE WITH THE PEN";
-    ui::AddText(overlays, (width_ - ui::TextWidth(invite, scale)) / 2, height_ / 2 - 4 * scale,
-                scale, invite, {255, 255, 255, static_cast<std::uint8_t>(150 + 100 * breath)});
+    if (staff_panel_open) {
+      // The panel covers the middle: no invitation under its lines.
+    } else if (ttf) {
+      plates_.push_back(AddPlate(overlays,
+                                 {{strings.Screen("attract_title"), title_px, true},
+                                  {strings.Screen("attract_pen"), body_px, false}},
+                                 width_ / 2, height_ * 3 / 10));
+      plates_.push_back(AddPlate(overlays,
+                                 {{strings.Screen("attract_token"), body_px, false},
+                                  {strings.Screen("attract_rest"), body_px, false}},
+                                 width_ / 2, height_ * 7 / 10));
+    } else {
+      const int scale = std::max(2, width_ / 320);
+      const char* invite = "TOUCH THE PICTURE WITH THE PEN";
+      ui::AddText(overlays, (width_ - ui::TextWidth(invite, scale)) / 2, height_ / 2 - 4 * scale,
+                  scale, invite, {255, 255, 255, static_cast<std::uint8_t>(150 + 100 * breath)});
+    }
   }
   if (session.mode() == kiosk::SessionMode::kCountdown) {
     const double left = session.SecondsLeft(now_s);
-    ui::AddCountdownBar(overlays, width_, height_, static_cast<float>(left / 3.0));
+    ui::AddCountdownBar(overlays, width_, height_,
+                        static_cast<float>(left / std::max(session.config().countdown_s, 1e-3)));
     ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
+    if (ttf) {
+      std::vector<PlateLine> lines = {{strings.Screen("countdown"), title_px, true}};
+      if (const int count = CountShown(session.config(), left); count > 0) {
+        lines.push_back({std::to_string(count), height_ / 4, true});
+      }
+      plates_.push_back(AddPlate(overlays, lines, width_ / 2, height_ / 2));
+    }
   } else if (session.mode() == kiosk::SessionMode::kRecording) {
     ui::AddRecordingDot(overlays, width_, height_);
     ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
+    if (ttf) {
+      plates_.push_back(
+          AddPlate(overlays,
+                   {{strings.Screen("recording"), title_px, true},
+                    {strings.Screen(MeterWordKey(engine_->mic_level())), title_px, false}},
+                   width_ / 2, height_ / 2));
+    }
   }
   if (!message_.empty() && now_s < message_until_s_) {
-    const int banner_h = std::max(24, height_ / 10);
-    overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
-    const int scale = std::max(2, banner_h / 14);
-    ui::AddText(overlays, (width_ - ui::TextWidth(message_, scale)) / 2,
-                height_ - banner_h + (banner_h - 7 * scale) / 2, scale, message_,
-                {255, 255, 255, 255});
+    const int banner_h = std::max(24, height_ / 8);
+    if (ttf) {
+      // A coloured band for sighted visitors at a glance, the words on their own dark plate.
+      overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
+      plates_.push_back(AddPlate(overlays, {{strings.Screen(message_), body_px, true}}, width_ / 2,
+                                 height_ - banner_h / 2));
+    } else {
+      overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
+      const int scale = std::max(2, banner_h / 14);
+      const std::string& text = strings.Screen(message_);
+      ui::AddText(overlays, (width_ - ui::TextWidth(text, scale)) / 2,
+                  height_ - banner_h + (banner_h - 7 * scale) / 2, scale, text,
+                  {255, 255, 255, 255});
+    }
   } else {
     message_.clear();
   }

@@ -14,8 +14,21 @@
 #include "kiosk/kiosk_engine.h"
 #include "ui/image_rgba.h"
 #include "ui/texture_view.h"
+#include "ui/ttf_text.h"
 
 namespace sas::app {
+
+// The recording's meter in words (the screen table's key): below kMeterLouderBelowDbfs of the
+// microphone's level "louder", above kMeterTooLoudAboveDbfs "too loud", else "good".
+inline constexpr double kMeterLouderBelowDbfs = -35.0;
+inline constexpr double kMeterTooLoudAboveDbfs = -3.0;
+const char* MeterWordKey(float level);
+// The number the countdown shows (3, 2, 1, as the count is spoken; 0 before and at the tone).
+int CountShown(const kiosk::SessionConfig& config, double seconds_left);
+
+// Text is white on a dark plate (never bare on a picture).
+inline constexpr ui::Rgba kPlateColor{12, 12, 12, 235};
+inline constexpr ui::Rgba kTextColor{255, 255, 255, 255};
 
 class VisitView {
  public:
@@ -36,9 +49,21 @@ class VisitView {
     return pictures_.at(static_cast<std::size_t>(texture));
   }
   bool attract() const { return attract_; }
+  // The screen table's key of the message shown ("too_quiet", "voice_ready"...), "" when none.
   const std::string& message() const { return message_; }
+  // The text plates drawn in the last Advance (tests: contrast over what is under them).
+  const std::vector<ui::PixelRect>& plates() const { return plates_; }
+  ui::TextRenderer& text() { return text_; }
 
  private:
+  struct PlateLine {
+    std::string text;
+    int size_px;
+    bool bold;
+  };
+  // Lines centred on (centre_x, centre_y) over one dark plate; returns the plate.
+  ui::PixelRect AddPlate(ui::Overlays& overlays, const std::vector<PlateLine>& lines, int centre_x,
+                         int centre_y);
   // Bubble wrap: the picture with the popped bubbles flattened (issue 5, paper §5.2.2).
   void SyncBubbles(double now_s);
   std::shared_ptr<const ui::ImageRgba> PoppedPicture() const;
@@ -57,6 +82,8 @@ class VisitView {
   ui::Rgba message_color_{};
   double message_until_s_ = 0.0;
   ui::Overlays last_overlays_;
+  ui::TextRenderer text_;
+  std::vector<ui::PixelRect> plates_;
 };
 
 }  // namespace sas::app

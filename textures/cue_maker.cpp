@@ -1,7 +1,10 @@
-// cue_maker: speaks the kiosk's spoken cues with espeak-ng at build time (issue 7: for visitors
-// who cannot see the screen). For each texture folder in <textures_dir> (a texture.toml inside):
-// <folder>_name.wav (its name) and <folder>_description.wav (its one-sentence description); for
-// each [messages] key of cues.toml: <key>.wav. Chain per cue:
+// cue_maker: speaks the kiosk's spoken cues with espeak-ng at build time (for visitors who cannot
+// see the screen), in every language of textures/strings/ (kiosk/strings.h). For each language
+// <code> it writes <out>/<code>/<key>.wav and, next to it, <key>.txt with the sentence it spoke
+// (the kiosk reports it with each cue it plays, so a test can check what was heard against the
+// string table). Keys: each message of the table's [cues], and for each texture folder in
+// <textures_dir> (a texture.toml inside) <folder>_name and <folder>_description: from the table's
+// [textures], else the texture.toml's own (English) name and description. Chain per cue:
 //   espeak-ng -v <voice> -s <wpm> -w tmp.wav "<text>"  (22.05 kHz)
 //   -> surface::ReadAudioFile: mono, windowed-sinc resampled to 48 kHz
 //   -> trim leading/trailing silence (below -40 dB re the peak), keep 20 ms either side
@@ -10,12 +13,10 @@
 //   -> 5 ms raised-cosine fades -> 24-bit PCM WAV, 48 kHz mono.
 // Normalising here, in our own code, keeps the build free of sox.
 //
-// Usage: cue_maker --espeak <path> --cues <cues.toml> --textures-dir <dir> --out <dir>
+// Usage: cue_maker --espeak <path> --strings <dir> --textures-dir <dir> --out <dir>
 
 #include <spawn.h>
 #include <sys/wait.h>
-
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/strings.h"
 #include "surface/audio_file.h"
 #include "surface/cue_library.h"
 #include "surface/loudness.h"
@@ -106,30 +108,26 @@ std::vector<float> Shape(std::vector<float> x) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string espeak, cues_path, textures_dir, out_dir;
+  std::string espeak, strings_dir, textures_dir, out_dir;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--espeak") {
       espeak = argv[i + 1];
-    } else if (flag == "--cues") {
-      cues_path = argv[i + 1];
+    } else if (flag == "--strings") {
+      strings_dir = argv[i + 1];
     } else if (flag == "--textures-dir") {
       textures_dir = argv[i + 1];
     } else if (flag == "--out") {
       out_dir = argv[i + 1];
     }
   }
-  if (espeak.empty() || cues_path.empty() || textures_dir.empty() || out_dir.empty()) {
+  if (espeak.empty() || strings_dir.empty() || textures_dir.empty() || out_dir.empty()) {
     std::fprintf(stderr,
-                 "usage: cue_maker --espeak <path> --cues <cues.toml> --textures-dir <dir> "
+                 "usage: cue_maker --espeak <path> --strings <dir> --textures-dir <dir> "
                  "--out <dir>\n");
     return 2;
   }
   try {
-    const toml::table cues = toml::parse_file(cues_path);
-    const std::string voice = cues["voice"]["espeak_voice"].value_or(std::string("en"));
-    const int wpm = static_cast<int>(cues["voice"]["words_per_minute"].value_or(int64_t{160}));
-    std::vector<Cue> list;
     std::vector<std::string> folders;
     for (const auto& entry : fs::directory_iterator(textures_dir)) {
       if (entry.is_directory() && fs::is_regular_file(entry.path() / "texture.toml")) {
@@ -137,43 +135,43 @@ int main(int argc, char** argv) {
       }
     }
     std::sort(folders.begin(), folders.end());
+    std::vector<sas::surface::TextureFile> textures;
     for (const auto& folder : folders) {
-      const auto texture = sas::surface::LoadTextureFile(
-          (fs::path(textures_dir) / folder / "texture.toml").string());
-      list.push_back({folder + "_name", texture.name});
-      list.push_back({folder + "_description", texture.description});
+      textures.push_back(sas::surface::LoadTextureFile(
+          (fs::path(textures_dir) / folder / "texture.toml").string()));
     }
-    const toml::table* messages = cues["messages"].as_table();
-    if (messages == nullptr) throw std::runtime_error(cues_path + ": no [messages] table");
-    for (const auto& name : sas::surface::MessageCueNames()) {
-      const auto text = (*messages)[name].value<std::string>();
-      if (!text || text->empty()) {
-        throw std::runtime_error(cues_path + ": messages." + name + ": missing or empty");
+    std::size_t made = 0;
+    for (const auto& code : sas::kiosk::KioskLanguages()) {
+      const auto table = sas::kiosk::LoadLanguageTable(strings_dir, code);
+      std::vector<Cue> list;
+      for (std::size_t t = 0; t < folders.size(); ++t) {
+        list.push_back(
+            {folders[t] + "_name", table.CueText(folders[t] + "_name", textures[t].name)});
+        list.push_back({folders[t] + "_description",
+                        table.CueText(folders[t] + "_description", textures[t].description)});
       }
-      list.push_back({name, *text});
-    }
-    for (const auto& [key, node] : *messages) {
-      const auto& names = sas::surface::MessageCueNames();
-      if (std::find(names.begin(), names.end(), std::string(key.str())) == names.end()) {
-        throw std::runtime_error(cues_path + ": messages." + std::string(key.str()) +
-                                 ": unknown cue (the kiosk plays only " + names.front() +
-                                 ", ...; see surface/cue_library.h)");
+      for (const auto& key : sas::kiosk::CueKeys()) list.push_back({key, table.CueText(key)});
+      const fs::path dir = fs::path(out_dir) / code;
+      fs::create_directories(dir);
+      for (const auto& cue : list) {
+        const std::string raw = (dir / (cue.key + ".espeak.wav")).string();
+        Speak(espeak, table.espeak_voice, table.words_per_minute, cue.text, raw);
+        sas::surface::AudioReadLimits limits;
+        limits.target_rate_hz = kRateHz;
+        const auto clip = sas::surface::ReadAudioFile(raw, limits);
+        fs::remove(raw);
+        const std::vector<float> shaped = Shape(clip.samples);
+        sas::surface::WriteWav((dir / (cue.key + ".wav")).string(), shaped.data(), shaped.size(), 1,
+                               static_cast<int>(kRateHz), sas::surface::WavFormat::kPcm24);
+        std::FILE* text = std::fopen((dir / (cue.key + ".txt")).c_str(), "w");
+        if (text == nullptr) throw std::runtime_error("cannot write " + (dir / cue.key).string());
+        std::fprintf(text, "%s\n", cue.text.c_str());
+        std::fclose(text);
+        ++made;
       }
     }
-    fs::create_directories(out_dir);
-    for (const auto& cue : list) {
-      const std::string raw = (fs::path(out_dir) / (cue.key + ".espeak.wav")).string();
-      Speak(espeak, voice, wpm, cue.text, raw);
-      sas::surface::AudioReadLimits limits;
-      limits.target_rate_hz = kRateHz;
-      const auto clip = sas::surface::ReadAudioFile(raw, limits);
-      fs::remove(raw);
-      const std::vector<float> shaped = Shape(clip.samples);
-      sas::surface::WriteWav((fs::path(out_dir) / (cue.key + ".wav")).string(), shaped.data(),
-                             shaped.size(), 1, static_cast<int>(kRateHz),
-                             sas::surface::WavFormat::kPcm24);
-    }
-    std::printf("cue_maker: %zu spoken cues in %s\n", list.size(), out_dir.c_str());
+    std::printf("cue_maker: %zu spoken cues in %zu languages in %s\n", made,
+                sas::kiosk::KioskLanguages().size(), out_dir.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cue_maker: %s\n", e.what());
     return 1;

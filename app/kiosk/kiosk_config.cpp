@@ -4,6 +4,8 @@
 #include "kiosk/atomic_file.h"
 
 #include <toml++/toml.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -112,6 +114,27 @@ auto TextList(std::vector<std::string> KioskConfig::*member, std::size_t count) 
   };
 }
 
+// Language codes, each one of `allowed`, none twice; an empty list is allowed.
+auto LanguageList(std::vector<std::string> KioskConfig::*member, std::vector<std::string> allowed) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto* array = node.as_array();
+    if (array == nullptr) throw ConfigError(where + "expected a list of language codes");
+    std::vector<std::string> values;
+    for (const auto& element : *array) {
+      const auto value = element.value<std::string>();
+      if (!element.is_string() || !value ||
+          std::find(allowed.begin(), allowed.end(), *value) == allowed.end()) {
+        throw ConfigError(where + "expected language codes among en, de, fr, it, es");
+      }
+      if (std::find(values.begin(), values.end(), *value) != values.end()) {
+        throw ConfigError(where + "'" + *value + "' is listed twice");
+      }
+      values.push_back(*value);
+    }
+    config.*member = std::move(values);
+  };
+}
+
 auto Integer(int KioskConfig::*member, int min, int max) {
   return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     if (!node.is_integer()) throw ConfigError(where + "expected an integer");
@@ -179,8 +202,15 @@ const std::vector<KeySpec>& Schema() {
       {"session", "default_texture",
        Choice(&KioskConfig::default_texture,
               {"bubble_wrap", "broken_glass", "wooden_board", "cracked_ground"})},
+      {"session", "describe_after_rest_s", Real(&KioskConfig::describe_after_rest_s, 0.0, 10.0)},
+      {"attract", "passive_stroke", Flag(&KioskConfig::attract_passive_stroke)},
+      {"attract", "invitation_interval_s", Real(&KioskConfig::invitation_interval_s, 0.0, 3600.0)},
+      {"language", "default", Choice(&KioskConfig::language, {"en", "de", "fr", "it", "es"})},
+      {"language", "visitor_choices",
+       LanguageList(&KioskConfig::visitor_languages, {"en", "de", "fr", "it", "es"})},
       {"staff", "chord", Chord(&KioskConfig::staff_chord)},
       {"staff", "chord_hold_s", Real(&KioskConfig::staff_chord_hold_s, 0.0, 10.0)},
+      {"staff", "panel_timeout_s", Real(&KioskConfig::staff_panel_timeout_s, 10.0, 86400.0)},
   };
   return schema;
 }

@@ -60,10 +60,24 @@ struct KioskConfig {
   // [session]
   double idle_timeout_s = 60.0;
   std::string default_texture = "wooden_board";
+  // Seconds the pen must rest still on a texture before its description is spoken (0: never).
+  double describe_after_rest_s = 2.0;
+  // [attract] — while nobody is at the box: the engine strokes the picture itself, gently, in
+  // bursts (the paper's passive exploration), and speaks the invitation every
+  // invitation_interval_s seconds (0: never).
+  bool attract_passive_stroke = true;
+  double invitation_interval_s = 45.0;
+  // [language] — what the kiosk says and shows (textures/strings/<code>.toml): the configured
+  // language, and the ones the visitor's language key (L) steps through (empty: no choice).
+  std::string language = "en";
+  std::vector<std::string> visitor_languages = {"en", "de", "fr", "it", "es"};
   // [staff] — the chord that opens the staff panel: modifiers (ctrl, alt, shift, super) and one
   // key name, held for chord_hold_s. At least two modifiers, so a visitor cannot type it by chance.
   std::string staff_chord = "ctrl+alt+s";
   double staff_chord_hold_s = 1.0;
+  // The panel closes itself this long after the last staff action (chord or button), so one left
+  // open does not hold off the idle reset.
+  double staff_panel_timeout_s = 300.0;
 };
 
 // Parses `path`. Throws ConfigError ("<file>:<line>: <key>: <what>") on any problem.

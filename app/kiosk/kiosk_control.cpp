@@ -8,10 +8,10 @@
 namespace sas::kiosk {
 
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded) {
-  std::string line = "CONFIG: " + path;
+  std::string line = "Config: " + path;
   if (loaded.problem.empty()) return line;
-  line += loaded.source == ConfigLoadResult::Source::kLastGood ? " BAD, USING THE LAST GOOD ONE: "
-                                                               : " NOT USED, DEFAULTS: ";
+  line += loaded.source == ConfigLoadResult::Source::kLastGood ? " bad, using the last good one: "
+                                                               : " not used, defaults: ";
   return line + loaded.problem;
 }
 

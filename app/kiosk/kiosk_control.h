@@ -30,7 +30,7 @@
 namespace sas::kiosk {
 
 // The staff panel's and the journal's line about the configuration file that was (or was not)
-// used at start: "CONFIG: <path>" when it loaded, else which fallback is in use and the problem
+// used at start: "Config: <path>" when it loaded, else which fallback is in use and the problem
 // ("<file>:<line>: <key>: <what>").
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded);
 

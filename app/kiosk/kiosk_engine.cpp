@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <stdexcept>
 
@@ -39,6 +40,18 @@ constexpr double kPopImpulseNs = 0.002;
 // saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
 constexpr double kBubblePressMaxForceN = 4.0;
 constexpr double kCountersSaveIntervalS = 10.0;
+// The pen counts as resting while it stays within this radius of where it settled (a hand holding
+// a pen still drifts by a millimetre or two).
+constexpr double kRestRadiusMm = 3.0;
+// The passive stroke (attract): a gentle, slow stroke in bursts, with quiet gaps between them in
+// which the microphone measures the room (ambient gain). Its sound is this far below a visitor's
+// stroke of the same speed and pressure.
+constexpr double kPassiveBurstS = 8.0;
+constexpr double kPassiveGapS = 6.0;
+constexpr double kPassiveRingOutS = 1.0;  // after a burst, before the room is measured again
+constexpr double kPassiveSpeedMmS = 60.0;
+constexpr double kPassivePressure = 0.35;
+constexpr double kPassiveGainDb = -10.0;
 // Per-stroke gain ramps (stroke_gain.h): while a stroke plays, over 20 ms (no audible step); for
 // the first kLandingWindowS of a stroke over 1 ms, so the landing click gets the stroke's gain.
 constexpr double kStrokeRampS = 0.02;
@@ -82,6 +95,14 @@ std::string FindTextureFile(const std::string& name) {
     const fs::path file = fs::path(dir) / name / "texture.toml";
     std::error_code error;
     if (fs::is_regular_file(file, error)) return file.string();
+  }
+  return {};
+}
+
+std::string FindStringsDir() {
+  for (const auto& dir : DataDirs("strings")) {
+    std::error_code error;
+    if (fs::is_regular_file(fs::path(dir) / "en.toml", error)) return dir;
   }
   return {};
 }
@@ -177,6 +198,8 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   session.idle_timeout_s = options_.config.idle_timeout_s;
   session.countdown_s = options_.countdown_s;
   session.record_max_s = options_.config.record_max_duration_s;
+  session.staff_panel_timeout_s = options_.config.staff_panel_timeout_s;
+  session.invitation_interval_s = options_.config.invitation_interval_s;
   session_ = Session(session);
   if (!options_.counters_path.empty()) {
     RemoveStaleTemporaries(options_.counters_path);  // left by a kill in the middle of a save
@@ -200,10 +223,25 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   if (options_.spoken_cues) {
     cues_dir_ = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
   }
+  LoadLanguages();
   LoadCues();
   fade_len_ = std::max(
       1, static_cast<int>(std::lround(options_.cross_fade_s * options_.config.sample_rate_hz)));
   for (auto& slot : slots_) slot.scene.Init(options_.config.sample_rate_hz);
+  staff_smooth_ =
+      static_cast<float>(1.0 - std::exp(-1.0 / (0.02 * options_.config.sample_rate_hz)));
+  if (!options_.staff_settings_path.empty()) {
+    StaffSettingsLoad staff_load = LoadStaffSettings(options_.staff_settings_path);
+    if (!staff_load.report.empty()) platform::DefaultLogger().Warn("staff", staff_load.report);
+    staff_may_save_ = staff_load.may_save;
+    staff_ = staff_load.settings;
+    // Where the ramps start: a restart comes up at the kept level, not fading into it.
+    staff_sound_now_ = static_cast<float>(std::pow(10.0, staff_.volume_db / 20.0));
+    staff_haptic_now_ = static_cast<float>(std::pow(10.0, staff_.vibration_db / 20.0));
+    ApplyStaffGains();
+    low_vibration_ = staff_.low_vibration;
+    audio_low_vibration_.store(low_vibration_, std::memory_order_release);
+  }
   ShowSurface({false, default_texture_});
   SetAudioRunning(false);  // no callback yet: take the first switch here
 }
@@ -217,48 +255,94 @@ KioskEngine::~KioskEngine() {
 
 // ---------------------------------------------------------------------------- cues and clips
 
-int KioskEngine::AddClip(std::string name, std::vector<float> stereo) {
-  clips_.push_back({std::move(stereo), std::move(name)});
+int KioskEngine::AddClip(std::string name, std::vector<float> mono, int channel) {
+  clips_.push_back({std::move(mono), channel, std::move(name), {}});
   return static_cast<int>(clips_.size()) - 1;
+}
+
+void KioskEngine::LoadLanguages() {
+  const std::string strings_dir =
+      options_.strings_dir.empty() ? FindStringsDir() : options_.strings_dir;
+  // The configured language first (index 0 is the one an idle reset returns to), then the
+  // visitor's choices in their order.
+  std::vector<std::string> codes = {options_.config.language};
+  for (const auto& code : options_.config.visitor_languages) {
+    if (std::find(codes.begin(), codes.end(), code) == codes.end()) codes.push_back(code);
+  }
+  for (const auto& code : codes) {
+    LanguageAssets assets;
+    try {
+      if (strings_dir.empty()) throw std::runtime_error("no strings folder found");
+      assets.table = LoadLanguageTable(strings_dir, code);
+    } catch (const std::exception& bad) {
+      // The kiosk still runs: without its table a language has no texts or cues of its own.
+      platform::DefaultLogger().Warn("strings",
+                                     std::string(bad.what()) + "; language " + code + " left out");
+      if (!languages_.empty()) continue;
+      assets.table.code = code;
+    }
+    languages_.push_back(std::move(assets));
+  }
+  for (std::size_t i = 1; i < languages_.size(); ++i) {
+    const auto& code = languages_[i].table.code;
+    if (std::find(options_.config.visitor_languages.begin(),
+                  options_.config.visitor_languages.end(),
+                  code) != options_.config.visitor_languages.end()) {
+      visitor_languages_.push_back(static_cast<int>(i));
+    }
+  }
+  if (std::find(options_.config.visitor_languages.begin(), options_.config.visitor_languages.end(),
+                options_.config.language) != options_.config.visitor_languages.end()) {
+    visitor_languages_.insert(visitor_languages_.begin(), 0);
+  }
 }
 
 void KioskEngine::LoadCues() {
   const double fs_hz = options_.config.sample_rate_hz;
-  const auto load = [&](const std::string& file) -> int {
+  const auto load = [&](const fs::path& dir, const std::string& key) -> int {
     if (cues_dir_.empty()) return -1;
-    const fs::path path = fs::path(cues_dir_) / file;
+    const fs::path path = dir / (key + ".wav");
     std::error_code error;
     if (!fs::is_regular_file(path, error)) return -1;
     try {
       surface::AudioReadLimits limits;
       limits.target_rate_hz = fs_hz;
       limits.max_duration_s = 30.0;
-      const auto clip = surface::ReadAudioFile(path.string(), limits);
+      auto clip = surface::ReadAudioFile(path.string(), limits);
       if (const std::string problem = surface::CueLevelProblem(clip); !problem.empty()) {
         throw std::runtime_error(path.string() + ": " + problem);
       }
-      std::vector<float> stereo(clip.samples.size() * 2, 0.0f);
-      for (std::size_t i = 0; i < clip.samples.size(); ++i) stereo[2 * i] = clip.samples[i];
-      return AddClip(file, std::move(stereo));
+      const int index = AddClip(key, std::move(clip.samples), 0);
+      // The sentence cue_maker spoke into it: reported with each play (CueEvent).
+      std::ifstream text(dir / (key + ".txt"));
+      std::getline(text, clips_.back().text);
+      return index;
     } catch (const std::exception& bad) {
       platform::DefaultLogger().Warn("cues", std::string(bad.what()) + "; that cue stays silent");
       return -1;  // the visit goes on
     }
   };
-  for (const auto& key : texture_keys_) {
-    name_cues_.push_back(load(key + "_name.wav"));
-    description_cues_.push_back(load(key + "_description.wav"));
+  int expected = 0;
+  for (std::size_t l = 0; l < languages_.size(); ++l) {
+    auto& language = languages_[l];
+    // <cues>/<language>/; a folder holding the files themselves serves the configured language.
+    fs::path dir = fs::path(cues_dir_) / language.table.code;
+    std::error_code error;
+    if (!fs::is_directory(dir, error)) {
+      if (l != 0) continue;
+      dir = cues_dir_;
+    }
+    for (const auto& key : texture_keys_) {
+      language.name_cues.push_back(load(dir, key + "_name"));
+      language.description_cues.push_back(load(dir, key + "_description"));
+    }
+    for (const auto& key : CueKeys()) language.message_cues[key] = load(dir, key);
+    expected += static_cast<int>(texture_keys_.size() * 2 + CueKeys().size());
   }
-  message_cues_.fill(-1);
-  message_cues_[static_cast<std::size_t>(Cue::kRecordCountdown)] = load("record_countdown.wav");
-  message_cues_[static_cast<std::size_t>(Cue::kRecordingTooQuiet)] = load("too_quiet.wav");
-  message_cues_[static_cast<std::size_t>(Cue::kRecordingTooLoud)] = load("too_loud.wav");
-  message_cues_[static_cast<std::size_t>(Cue::kRecordingUnavailable)] = load("no_microphone.wav");
-  message_cues_[static_cast<std::size_t>(Cue::kVoiceReady)] = load("voice_ready.wav");
   // For a blind visitor the cues are the only way to know which texture is under the pen: a box
   // without them must say so where staff look (journal at warning, staff panel's CUES line).
   if (options_.spoken_cues) {
-    const int expected = static_cast<int>(texture_keys_.size()) * 2 + 5;
+    expected = std::max(expected, static_cast<int>(texture_keys_.size() * 2 + CueKeys().size()));
     const int loaded = static_cast<int>(clips_.size());
     if (loaded < expected) {
       platform::DefaultLogger().Warn(
@@ -279,44 +363,125 @@ void KioskEngine::LoadCues() {
   };
   {
     const auto n = static_cast<std::size_t>(fs_hz);
-    std::vector<float> tone(n * 2, 0.0f);
+    std::vector<float> tone(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-      tone[2 * i] = static_cast<float>(
+      tone[i] = static_cast<float>(
           0.25 * edge(i, n) *
           std::sin(2.0 * 3.14159265358979 * 1000.0 * static_cast<double>(i) / fs_hz));
     }
-    tone_clip_ = AddClip("test tone", std::move(tone));
+    tone_clip_ = AddClip("test tone", std::move(tone), 0);
+  }
+  {
+    // The recording's tone: 0.25 s of 880 Hz at -12 dBFS with 10 ms edges, a clear "now" that
+    // the count leads up to (the same in every language).
+    const auto n = static_cast<std::size_t>(0.25 * fs_hz);
+    std::vector<float> beep(n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      beep[i] = static_cast<float>(
+          0.25 * edge(i, n) *
+          std::sin(2.0 * 3.14159265358979 * 880.0 * static_cast<double>(i) / fs_hz));
+    }
+    record_tone_clip_ = AddClip("record tone", std::move(beep), 0);
   }
   {
     const auto n = static_cast<std::size_t>(2.0 * fs_hz);
     const double f0 = 40.0, f1 = 800.0, length_s = 2.0;
     const double k = std::log(f1 / f0);
-    std::vector<float> sweep(n * 2, 0.0f);
+    std::vector<float> sweep(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
       const double t = static_cast<double>(i) / fs_hz;
       const double phase =
           2.0 * 3.14159265358979 * f0 * length_s / k * (std::exp(t * k / length_s) - 1.0);
-      sweep[2 * i + 1] = static_cast<float>(0.5 * edge(i, n) * std::sin(phase));
+      sweep[i] = static_cast<float>(0.5 * edge(i, n) * std::sin(phase));
     }
-    sweep_clip_ = AddClip("transducer sweep", std::move(sweep));
+    sweep_clip_ = AddClip("transducer sweep", std::move(sweep), 1);
   }
 }
 
 int KioskEngine::cues_loaded() const {
-  return static_cast<int>(clips_.size()) - 2;  // minus the two test signals
+  return static_cast<int>(clips_.size()) - 3;  // minus the test signals and the record tone
+}
+
+const char* KioskEngine::CueKey(Cue cue) {
+  switch (cue) {
+    case Cue::kRecordCountdown:
+      return "record_countdown";
+    case Cue::kRecordingTooQuiet:
+      return "too_quiet";
+    case Cue::kRecordingTooLoud:
+      return "too_loud";
+    case Cue::kRecordingUnavailable:
+      return "no_microphone";
+    case Cue::kVoiceReady:
+      return "voice_ready";
+    case Cue::kInvitation:
+      return "invitation";
+    case Cue::kTextureName:
+    case Cue::kTextureDescription:
+    case Cue::kCount:
+    case Cue::kRecordTone:
+      break;
+  }
+  return "";
+}
+
+void KioskEngine::Speak(const SessionAction& action) {
+  if (action.cue == Cue::kCount) {
+    SpeakMessage("count_" + std::to_string(std::clamp(action.count, 1, 3)));
+  } else if (action.cue == Cue::kRecordTone) {
+    PlayCue(record_tone_clip_, "tone");
+  } else {
+    Speak(action.cue, action.surface.texture);
+  }
 }
 
 void KioskEngine::Speak(Cue cue, int texture) {
-  int clip = -1;
+  const auto& language = languages_[static_cast<std::size_t>(language_)];
   const auto t = static_cast<std::size_t>(std::clamp(texture, 0, int(textures_.size()) - 1));
   if (cue == Cue::kTextureName) {
-    clip = name_cues_[t];
+    PlayCue(t < language.name_cues.size() ? language.name_cues[t] : -1, texture_keys_[t] + "_name");
   } else if (cue == Cue::kTextureDescription) {
-    clip = description_cues_[t];
+    PlayCue(t < language.description_cues.size() ? language.description_cues[t] : -1,
+            texture_keys_[t] + "_description");
   } else {
-    clip = message_cues_[static_cast<std::size_t>(cue)];
+    SpeakMessage(CueKey(cue));
   }
-  if (clip >= 0) Play(clip);  // no file: carry on silently (the screen still says it)
+}
+
+void KioskEngine::SpeakMessage(const std::string& key) {
+  const auto& cues = languages_[static_cast<std::size_t>(language_)].message_cues;
+  const auto found = cues.find(key);
+  PlayCue(found == cues.end() ? -1 : found->second, key);
+}
+
+void KioskEngine::PlayCue(int clip, const std::string& key) {
+  if (clip < 0) return;  // no file: carry on silently (the screen still says it)
+  Play(clip);
+  if (cue_observer_) {
+    cue_observer_({last_now_ns_, languages_[static_cast<std::size_t>(language_)].table.code, key,
+                   clips_[static_cast<std::size_t>(clip)].text});
+  }
+}
+
+bool KioskEngine::NextLanguage(std::int64_t now_ns) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  if (visitor_languages_.size() < 2) return false;
+  session_.OnVisitorActivity(static_cast<double>(now_ns) * 1e-9);
+  const auto at = std::find(visitor_languages_.begin(), visitor_languages_.end(), language_);
+  language_ = at == visitor_languages_.end() || at + 1 == visitor_languages_.end()
+                  ? visitor_languages_.front()
+                  : *(at + 1);
+  SpeakMessage("language");  // in the new language: its own name
+  return true;
+}
+
+const LanguageTable& KioskEngine::strings() const {
+  return languages_[static_cast<std::size_t>(language_)].table;
+}
+
+std::string KioskEngine::TextureName(int texture) const {
+  const auto t = static_cast<std::size_t>(std::clamp(texture, 0, int(textures_.size()) - 1));
+  return strings().CueText(texture_keys_[t] + "_name", textures_[t].loaded.file.name);
 }
 
 void KioskEngine::Play(int clip) {
@@ -373,6 +538,13 @@ int KioskEngine::popped_bubbles() const {
 void KioskEngine::OnPen(const PenInput& pen) {
   last_now_ns_ = std::max(last_now_ns_, pen.time_ns);
   session_.OnPen(static_cast<double>(pen.time_ns) * 1e-9, pen.tip_down);
+  WatchPenRest(pen);
+  if (passive_down_) {
+    // The passive probe owns the scene until a visitor touches: a hover over the attract screen
+    // must not lift it; a touch takes the probe over where the pen is (its command follows).
+    if (!pen.tip_down && session_.mode() == SessionMode::kAttract) return;
+    passive_down_ = false;
+  }
   const auto& field = *current_field_;
   double fx = 0.0, fy = 0.0;
   ScreenToField(pen.x_px, pen.y_px, &fx, &fy);
@@ -463,6 +635,110 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_fy_ = y_m;
 }
 
+void KioskEngine::WatchPenRest(const PenInput& pen) {
+  if (!pen.tip_down || pen.pressure <= 0.0) {
+    rest_since_ns_ = -1;
+    return;
+  }
+  const double radius_px = kRestRadiusMm / surface::DisplayGeometry{}.pixel_pitch_mm();
+  if (rest_since_ns_ < 0 || std::hypot(pen.x_px - rest_x_px_, pen.y_px - rest_y_px_) > radius_px) {
+    // Touched down or moved on: a new place to rest, described again when the pen stops there.
+    rest_x_px_ = pen.x_px;
+    rest_y_px_ = pen.y_px;
+    rest_since_ns_ = pen.time_ns;
+    rest_spoken_ = false;
+  }
+}
+
+void KioskEngine::PassiveStroke(std::int64_t now_ns) {
+  const bool attract = session_.mode() == SessionMode::kAttract;
+  if (!options_.attract_stroke || !attract) {
+    passive_started_ns_ = -1;
+    return;
+  }
+  if (passive_started_ns_ < 0) passive_started_ns_ = now_ns;
+  const double t_s = static_cast<double>(now_ns - passive_started_ns_) * 1e-9;
+  const double cycle_s = kPassiveBurstS + kPassiveGapS;
+  const double in_cycle_s = std::fmod(t_s, cycle_s);
+  // A quiet gap first, so the attract screen starts in silence after a visit.
+  const bool down = in_cycle_s >= kPassiveGapS;
+  if (!down) {
+    if (passive_down_) {
+      passive_down_ = false;
+      passive_quiet_since_ns_ = now_ns;
+      Message lift;
+      lift.kind = Message::Kind::kProbe;
+      lift.time_ns = now_ns;
+      lift.command = last_passive_command_;
+      lift.command.tip_down = false;
+      lift.command.velocity_mps = 0.0;
+      Send(lift);
+    }
+    return;
+  }
+  // Back and forth across the middle of the picture along a gentle wave: the whole burst covers
+  // kPassiveSpeedMmS * kPassiveBurstS of the surface at a steady speed.
+  const double pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
+  const double sw = options_.screen_width_px, sh = options_.screen_height_px;
+  const double span_px = 0.5 * sw;
+  const double travelled_px = (in_cycle_s - kPassiveGapS) * kPassiveSpeedMmS / pitch_mm;
+  const double leg = std::fmod(travelled_px, 2.0 * span_px);
+  const double along = leg < span_px ? leg : 2.0 * span_px - leg;
+  PenInput pen;
+  pen.time_ns = now_ns;
+  pen.x_px = 0.25 * sw + along;
+  pen.y_px = 0.5 * sh + 0.08 * sh * std::sin(2.0 * 3.14159265358979 * along / span_px);
+  pen.pressure = kPassivePressure;
+  pen.tip_down = true;
+  double fx = 0.0, fy = 0.0;
+  ScreenToField(pen.x_px, pen.y_px, &fx, &fy);
+  const double pitch_m = current_field_->pitch_m();
+  synth::ProbeCommand command;
+  command.tip_down = true;
+  command.x_m = fx * pitch_m;
+  command.y_m = fy * pitch_m;
+  if (passive_down_) {
+    const double dx = command.x_m - last_passive_command_.x_m;
+    const double dy = command.y_m - last_passive_command_.y_m;
+    const double distance = std::hypot(dx, dy);
+    const double dt_s = std::max(1e-3, static_cast<double>(now_ns - passive_pen_.time_ns) * 1e-9);
+    command.velocity_mps = distance / dt_s;
+    if (distance > 1e-12) {
+      command.direction_x = dx / distance;
+      command.direction_y = dy / distance;
+    }
+  } else if (requested_slot_ >= 0) {
+    // The burst's level: the texture's own, this far down (a visitor's touch sets it anew).
+    const double gain = std::pow(10.0, kPassiveGainDb / 20.0);
+    slots_[static_cast<std::size_t>(requested_slot_)].scene.SetStrokeGains(gain, gain,
+                                                                           kStrokeRampS);
+  }
+  command.normal_force_n = kPassivePressure * mapping_.max_force_n;
+  command.penetration_m = kPassivePressure * current_relief_m_;
+  const SurfaceChoice choice = session_.surface();
+  if (choice.voice) {
+    command.width_mm = kVoiceWidthMm;
+    command.style = synth::ProbeStyle::kScrape;
+  } else {
+    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
+    command.width_mm = probe.width_mm;
+    command.style = probe.style;
+  }
+  Message message;
+  message.kind = Message::Kind::kProbe;
+  message.time_ns = now_ns;
+  message.command = command;
+  Send(message);
+  passive_down_ = true;
+  passive_pen_ = pen;
+  last_passive_command_ = command;
+}
+
+bool KioskEngine::AmbientListening() const {
+  if (audio_clip_playing_.load(std::memory_order_relaxed) || passive_down_) return false;
+  return static_cast<double>(last_now_ns_ - passive_quiet_since_ns_) * 1e-9 >= kPassiveRingOutS;
+}
+
 int KioskEngine::TokenForTexture(std::size_t texture_index) const {
   for (std::size_t token = 0; token < token_texture_.size(); ++token) {
     if (token_texture_[token] == static_cast<int>(texture_index)) return static_cast<int>(token);
@@ -489,10 +765,22 @@ void KioskEngine::OnStaffChord(std::int64_t now_ns) {
   session_.OnStaffChord(static_cast<double>(now_ns) * 1e-9);
 }
 
+void KioskEngine::OnStaffActivity(std::int64_t now_ns) {
+  last_now_ns_ = std::max(last_now_ns_, now_ns);
+  session_.OnStaffActivity(static_cast<double>(now_ns) * 1e-9);
+}
+
 std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
   last_now_ns_ = std::max(last_now_ns_, now_ns);
   const double now_s = static_cast<double>(now_ns) * 1e-9;
   if (!audio_running_) SetAudioRunning(false);  // keep the pool moving without a device
+  // A pen held still sends few or no reports (a mouse none at all): the rest is timed here.
+  if (rest_since_ns_ >= 0 && !rest_spoken_ && options_.config.describe_after_rest_s > 0.0 &&
+      static_cast<double>(now_ns - rest_since_ns_) * 1e-9 >=
+          options_.config.describe_after_rest_s) {
+    rest_spoken_ = true;
+    session_.OnPenRest(now_s);
+  }
   session_.Tick(now_s);
   {
     const std::uint64_t frames = audio_speaker_frames_.load(std::memory_order_acquire);
@@ -507,6 +795,7 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
     ApplyActions(now_ns, actions);
     all.insert(all.end(), actions.begin(), actions.end());
   }
+  PassiveStroke(now_ns);
   const bool acknowledged = switches_done_.load(std::memory_order_acquire) == switches_sent_;
   if (pending_surface_ && acknowledged) {
     const SurfaceChoice choice = *pending_surface_;
@@ -548,7 +837,7 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
         ShowSurface(action.surface);
         break;
       case Kind::kSpeak:
-        Speak(action.cue, action.surface.texture);
+        Speak(action);
         break;
       case Kind::kStartRecording:
         if (recorder_ == nullptr) {
@@ -577,6 +866,8 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
         release_idle_slots_ = true;
         break;
       case Kind::kEnterAttract:
+        language_ = 0;  // the next visitor hears the configured language
+        break;
       case Kind::kLeaveAttract:
       case Kind::kStaffPanel:
         break;  // the UI's business
@@ -694,6 +985,10 @@ void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
   stroke_correction_ = CorrectionFor(texture);
   target.scene.SetStrokeGains(std::pow(10.0, stroke_correction_.sound_db / 20.0),
                               std::pow(10.0, stroke_correction_.haptic_db / 20.0));
+  if (passive_down_) {
+    const double gain = std::pow(10.0, kPassiveGainDb / 20.0);  // the passive stroke goes on
+    target.scene.SetStrokeGains(gain, gain);
+  }
   target.scene.Prepare(material.params, output, target.field->View());
   current_field_ = std::move(field);
   current_relief_m_ = ReliefM(*current_field_);
@@ -725,10 +1020,51 @@ void KioskEngine::SetLowVibration(bool on) {
   // Every prepared scene follows at once (an atomic each scene reads per block, 20 ms ramp);
   // scenes prepared later get it through their output parameters.
   low_vibration_ = on;
+  if (staff_.low_vibration != on) {
+    staff_.low_vibration = on;
+    SaveStaffSettings();
+  }
   for (auto& slot : slots_) slot.scene.SetLowVibration(on);
   // The transducer's ceiling comes down too, so nothing mixed after the scenes (the staff sweep,
   // a cue) can drive it harder than the mode allows.
   audio_low_vibration_.store(on, std::memory_order_release);
+}
+
+void KioskEngine::StepVolume(int steps) {
+  staff_.volume_db = StepStaffDb(staff_.volume_db, steps);
+  ApplyStaffGains();
+  SaveStaffSettings();
+}
+
+void KioskEngine::StepVibration(int steps) {
+  staff_.vibration_db = StepStaffDb(staff_.vibration_db, steps);
+  ApplyStaffGains();
+  SaveStaffSettings();
+}
+
+void KioskEngine::ApplyStaffGains() {
+  audio_staff_sound_.store(static_cast<float>(std::pow(10.0, staff_.volume_db / 20.0)),
+                           std::memory_order_relaxed);
+  audio_staff_haptic_.store(static_cast<float>(std::pow(10.0, staff_.vibration_db / 20.0)),
+                            std::memory_order_relaxed);
+}
+
+void KioskEngine::SaveStaffSettings() {
+  if (options_.staff_settings_path.empty()) return;
+  std::string why;
+  if (!staff_may_save_) {
+    why = "the damaged file could not be moved aside";
+  } else if (kiosk::SaveStaffSettings(options_.staff_settings_path, staff_, &why)) {
+    return;
+  }
+  // The change holds until the next restart; staff see why it will not last.
+  const std::string message = "staff settings not saved to " + options_.staff_settings_path + " (" +
+                              why + "); they hold until the kiosk restarts";
+  if (board_) {
+    board_->Set("storage", platform::DeviceState::kLost, message);
+  } else {
+    platform::DefaultLogger().Warn("staff", message);
+  }
 }
 
 void KioskEngine::SetAmbientGainDb(double gain_db) {
@@ -864,19 +1200,34 @@ void KioskEngine::RenderSegment(float* out, int channels, int begin, int end,
     }
   }
   if (playing_clip_ >= 0) {
-    const auto& clip = clips_[static_cast<std::size_t>(playing_clip_)].samples;
-    const std::size_t n = std::min(clip.size() - clip_pos_, static_cast<std::size_t>(frames) * 2);
-    for (std::size_t i = 0; i < n; ++i) a[i] += clip[clip_pos_ + i];
+    const auto& playing = clips_[static_cast<std::size_t>(playing_clip_)];
+    const auto& clip = playing.samples;
+    const std::size_t n = std::min(clip.size() - clip_pos_, static_cast<std::size_t>(frames));
+    float* to = a + playing.channel;
+    for (std::size_t i = 0; i < n; ++i) to[2 * i] += clip[clip_pos_ + i];
     clip_pos_ += n;
-    if (clip_pos_ >= clip.size()) playing_clip_ = -1;
+    if (clip_pos_ >= clip.size()) {
+      playing_clip_ = -1;
+      audio_clip_playing_.store(false, std::memory_order_relaxed);
+    }
   }
-  // Everything is mixed: the safety stage is the last step (its ceilings hold for every source).
+  // Everything is mixed: the staff's volume and vibration, then the safety stage as the last step
+  // (its ceilings hold for every source and every staff setting).
+  const float sound_target = audio_staff_sound_.load(std::memory_order_relaxed);
+  const float haptic_target = audio_staff_haptic_.load(std::memory_order_relaxed);
+  float sound_gain = staff_sound_now_, haptic_gain = staff_haptic_now_;
   for (int i = 0; i < frames; ++i) {
+    sound_gain += (sound_target - sound_gain) * staff_smooth_;
+    haptic_gain += (haptic_target - haptic_gain) * staff_smooth_;
+    a[2 * i] *= sound_gain;
+    a[2 * i + 1] *= haptic_gain;
     safety_.Process(a + 2 * static_cast<std::ptrdiff_t>(i));
     speaker_energy_ += static_cast<double>(a[2 * i]) * a[2 * i];
     float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;
     for (int c = 0; c < channels; ++c) frame[c] = c < 2 ? a[2 * i + c] : 0.0f;
   }
+  staff_sound_now_ = sound_gain;
+  staff_haptic_now_ = haptic_gain;
   // The frames go out last, with release: a reader that sees them sees at least their energy.
   speaker_frames_ += static_cast<std::uint64_t>(frames);
   audio_speaker_energy_.store(speaker_energy_, std::memory_order_relaxed);
@@ -925,6 +1276,7 @@ void KioskEngine::RenderChunk(float* out, int frames, int channels,
     } else if (message.slot >= 0 && message.slot < static_cast<int>(clips_.size())) {
       playing_clip_ = message.slot;
       clip_pos_ = 0;
+      audio_clip_playing_.store(true, std::memory_order_relaxed);
     }
   }
   RenderSegment(out, channels, segment_start, frames, count);

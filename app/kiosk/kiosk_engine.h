@@ -30,6 +30,8 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -41,6 +43,8 @@
 #include "kiosk/kiosk_config.h"
 #include "kiosk/material_file.h"
 #include "kiosk/session.h"
+#include "kiosk/staff_settings.h"
+#include "kiosk/strings.h"
 #include "kiosk/stroke_gain.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
@@ -78,12 +82,19 @@ struct KioskEngineOptions {
   std::vector<std::string> texture_paths;  // texture.toml files, token order; empty: FindTextures
   std::string materials_dir;               // searched first (render_command.h search order)
   std::string counters_path;               // empty: counters are not persisted
+  std::string staff_settings_path;         // staff panel volume/vibration; empty: not persisted
   std::string cues_dir;                    // empty: FindCuesDir()
+  std::string strings_dir;                 // the language tables; empty: FindStringsDir()
   bool spoken_cues = true;                 // false: no cue files loaded (level calibration)
   int screen_width_px = 1920;              // the screen the pen coordinates refer to
   int screen_height_px = 1080;
-  double cross_fade_s = 0.45;   // sound cross-fade on a switch (the picture fades alongside)
-  double countdown_s = 3.0;     // before recording starts
+  double cross_fade_s = 0.45;  // sound cross-fade on a switch (the picture fades alongside)
+  // Before recording starts: "speak after the tone" (~1.5 s in every language), the count a second
+  // apart and the tone.
+  double countdown_s = 5.5;
+  // While idle the engine strokes the picture itself (the paper's passive exploration). The live
+  // kiosk sets it from [attract] passive_stroke; off for everything that renders a scripted visit.
+  bool attract_stroke = false;
   bool virtual_clock = false;   // headless: audio time advances by rendered frames from 0
   int max_block_frames = 4096;  // largest block Render is called with (longer ones are split)
 };
@@ -119,6 +130,18 @@ surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration
 std::string FindTextureFile(const std::string& name);
 // <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
 std::string FindCuesDir();
+// <data>/strings (the language tables, strings.h), the same search order; "" when none has en.toml.
+std::string FindStringsDir();
+
+// A spoken cue as it was handed to the audio side (tests, the journal): the language, the cue's
+// key ("wooden_board_name", "count_3") and the sentence its file holds (cue_maker's .txt next to
+// it; "" when absent).
+struct CueEvent {
+  std::int64_t time_ns = 0;
+  std::string language;
+  std::string key;
+  std::string text;
+};
 
 class KioskEngine final : public platform::AudioRenderer {
  public:
@@ -136,6 +159,8 @@ class KioskEngine final : public platform::AudioRenderer {
   void OnToken(std::int64_t now_ns, int token);
   void OnRecordButton(std::int64_t now_ns, bool pressed);
   void OnStaffChord(std::int64_t now_ns);
+  // A staff panel button was worked (restarts the panel's own timeout).
+  void OnStaffActivity(std::int64_t now_ns);
   // Timers, recording, bubble surface updates; returns the session's actions (already applied to
   // the audio side) for the UI: pictures, overlays, attract, staff panel.
   std::vector<SessionAction> Tick(std::int64_t now_ns);
@@ -148,9 +173,31 @@ class KioskEngine final : public platform::AudioRenderer {
   void PlayTestTone();
   void PlayTransducerSweep();
   bool SaveCounters(std::string* error) const;
-  // Staff's low-vibration mode (configuration gains.low_vibration_db): switches at once, ramped.
+  // The visitor's language key: the next of the configured visitor languages, whose own name is
+  // spoken in it. False (nothing changes) when fewer than two are configured. The idle reset
+  // returns to the configured language.
+  bool NextLanguage(std::int64_t now_ns);
+  // While idle with attract_stroke: the virtual probe's position (screen px) and whether its tip is
+  // on the picture now, for the view's dent.
+  std::optional<PenInput> passive_pen() const {
+    return passive_down_ ? std::optional<PenInput>(passive_pen_) : std::nullopt;
+  }
+  // True when nothing the kiosk plays on its own (the passive stroke and its ring-out, a cue) is
+  // sounding: the room's level can be measured by the microphone then.
+  bool AmbientListening() const;
+  // Called with every cue handed to the audio side (control thread).
+  void SetCueObserver(std::function<void(const CueEvent&)> observer) {
+    cue_observer_ = std::move(observer);
+  }
+  // Staff's low-vibration mode (configuration gains.low_vibration_db): switches at once, ramped,
+  // and is kept in the staff settings file.
   void SetLowVibration(bool on);
   bool low_vibration() const { return low_vibration_; }
+  // Staff panel volume (speaker) and vibration (transducer) by `steps` of kStaffStepDb on top of
+  // the configured gains: applied at once (20 ms ramp) and kept in the staff settings file.
+  void StepVolume(int steps);
+  void StepVibration(int steps);
+  const StaffSettings& staff_settings() const { return staff_; }
   // Ambient-adaptive sound gain (ambient_gain.h), dB on top of the configured gains.
   void SetAmbientGainDb(double gain_db);
   double ambient_gain_db() const { return ambient_gain_db_; }
@@ -184,6 +231,11 @@ class KioskEngine final : public platform::AudioRenderer {
   const KioskConfig& config() const { return options_.config; }
   const std::string& cues_dir() const { return cues_dir_; }
   int cues_loaded() const;
+  // The current language's table (on-screen texts) and its code.
+  const LanguageTable& strings() const;
+  const std::string& language() const { return strings().code; }
+  // A texture's name in the current language.
+  std::string TextureName(int texture) const;
   // The per-stroke correction last handed to the scene under the pen (dB).
   StrokeCorrection stroke_correction() const { return stroke_correction_; }
   const StrokeGainMap& stroke_gains() const { return stroke_gains_; }
@@ -206,9 +258,16 @@ class KioskEngine final : public platform::AudioRenderer {
     synth::ProbeCommand command{};
     int slot = -1;  // kSwitch: the new scene; kPlay: the clip
   };
-  struct Clip {  // a pre-loaded cue or test signal: 2 interleaved channels at the output rate
+  struct Clip {  // a pre-loaded cue or test signal: mono at the output rate, on one channel
     std::vector<float> samples;
+    int channel = 0;  // 0 speaker, 1 transducer
     std::string name;
+    std::string text;  // a cue's spoken sentence
+  };
+  struct LanguageAssets {  // one language's table and cue clips (-1: absent)
+    LanguageTable table;
+    std::vector<int> name_cues, description_cues;  // per texture
+    std::map<std::string, int> message_cues;       // per CueKeys()
   };
   struct Slot {  // control side: what the slot's scene was prepared with (kept alive by it)
     synth::Scene scene;
@@ -222,12 +281,21 @@ class KioskEngine final : public platform::AudioRenderer {
   StrokeCorrection CorrectionFor(int texture) const;
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
+  void PassiveStroke(std::int64_t now_ns);
+  void WatchPenRest(const PenInput& pen);
+  void ApplyStaffGains();
+  void SaveStaffSettings();
+  void Speak(const SessionAction& action);
   void Speak(Cue cue, int texture);
   void Play(int clip);
   void Send(const Message& message);
   int FreeSlot() const;
   void LoadCues();
-  int AddClip(std::string name, std::vector<float> stereo);
+  int AddClip(std::string name, std::vector<float> mono, int channel);
+  void LoadLanguages();
+  static const char* CueKey(Cue cue);
+  void SpeakMessage(const std::string& key);
+  void PlayCue(int clip, const std::string& key);
 
   // Audio side.
   void ApplySwitchOnAudio(int slot) noexcept;
@@ -256,15 +324,30 @@ class KioskEngine final : public platform::AudioRenderer {
   bool recording_ = false;
   std::string cues_dir_;
   bool low_vibration_ = false;
+  StaffSettings staff_;
+  bool staff_may_save_ = true;  // false: a damaged staff file could not be moved aside
   double speaker_ceiling_ = 1.0, transducer_ceiling_ = 1.0;  // linear, from the configuration
   double low_vibration_factor_ = 1.0;                        // transducer ceiling factor
   ExposureMeter exposure_;
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
   std::vector<Clip> clips_;
-  std::vector<int> name_cues_, description_cues_;  // per texture, -1 when absent
-  std::array<int, 7> message_cues_{};              // per Cue (name/description unused)
-  int tone_clip_ = -1, sweep_clip_ = -1;
+  std::vector<LanguageAssets> languages_;  // [0]: the configured language
+  std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
+  int language_ = 0;
+  std::function<void(const CueEvent&)> cue_observer_;
+  int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
+  // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
+  bool passive_down_ = false;
+  PenInput passive_pen_{};
+  synth::ProbeCommand last_passive_command_{};
+  std::int64_t passive_started_ns_ = -1;  // this attract's start, -1 while a visitor is there
+  std::int64_t passive_quiet_since_ns_ = 0;
+  // The pen resting still (layered information): where it settled and since when (-1: moving or
+  // up), and whether this rest has been described already.
+  double rest_x_px_ = 0.0, rest_y_px_ = 0.0;
+  std::int64_t rest_since_ns_ = -1;
+  bool rest_spoken_ = false;
 
   // Control side of the pool.
   std::array<Slot, kSceneSlots> slots_;
@@ -299,6 +382,7 @@ class KioskEngine final : public platform::AudioRenderer {
   int fade_len_ = 1;
   bool lift_fading_ = false;
   int playing_clip_ = -1;
+  std::atomic<bool> audio_clip_playing_{false};
   std::size_t clip_pos_ = 0;
   std::int64_t virtual_now_ns_ = 0;
   std::vector<synth::ProbeCommand> block_commands_;
@@ -307,6 +391,12 @@ class KioskEngine final : public platform::AudioRenderer {
   synth::SafetyStage safety_;
   bool safety_low_vibration_ = false;             // the ceilings the stage has now
   std::atomic<bool> audio_low_vibration_{false};  // set by SetLowVibration (control thread)
+  // Staff volume and vibration as linear gains (control thread writes, audio thread follows them
+  // with a 20 ms one-pole, so a button press never clicks).
+  std::atomic<float> audio_staff_sound_{1.0f};
+  std::atomic<float> audio_staff_haptic_{1.0f};
+  float staff_sound_now_ = 1.0f, staff_haptic_now_ = 1.0f;
+  float staff_smooth_ = 1.0f;  // the one-pole's per-sample coefficient
   // The speaker's running totals after the safety stage (audio thread writes, Tick reads).
   double speaker_energy_ = 0.0;
   std::uint64_t speaker_frames_ = 0;

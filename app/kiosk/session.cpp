@@ -36,19 +36,25 @@ void Session::Show(SurfaceChoice surface, bool speak_name) {
   if (speak_name && !surface.voice) Speak(Cue::kTextureName, surface.texture);
 }
 
-// Any visitor activity: leaves the attract screen (a new visit) and restarts the idle timer.
+// Any visitor activity: leaves the attract screen and restarts the idle timer. The visit itself
+// is counted at the first pen contact (OnPen).
 void Session::Activity(double now_s) {
   last_activity_s_ = now_s;
   if (mode_ == SessionMode::kAttract) {
     mode_ = SessionMode::kExploring;
-    CountOne(counters_.sessions);
     Emit(SessionAction::Kind::kLeaveAttract);
   }
 }
 
 void Session::OnPen(double now_s, bool tip_down) {
+  // A hover over the attract screen is nobody yet (a nudged mouse, a pen lying by the display).
+  if (!tip_down && !tip_down_ && mode_ == SessionMode::kAttract) return;
   Activity(now_s);
   if (tip_down && !tip_down_) {
+    if (!visit_counted_) {
+      visit_counted_ = true;
+      CountOne(counters_.sessions);
+    }
     if (surface_.voice) {
       CountOne(counters_.voice_strokes);
     } else {
@@ -86,6 +92,7 @@ void Session::OnRecordButton(double now_s, bool pressed) {
     case SessionMode::kAttract:
       mode_ = SessionMode::kCountdown;
       phase_started_s_ = now_s;
+      next_count_ = 3;
       Speak(Cue::kRecordCountdown, surface_.texture);
       break;
     case SessionMode::kCountdown:
@@ -127,17 +134,65 @@ void Session::OnRecordingFinished(double now_s, RecordingOutcome outcome) {
 
 void Session::OnStaffChord(double now_s) {
   last_activity_s_ = now_s;
+  staff_last_s_ = now_s;
   staff_panel_open_ = !staff_panel_open_;
   SessionAction action{SessionAction::Kind::kStaffPanel};
   action.open = staff_panel_open_;
   actions_.push_back(action);
 }
 
+void Session::OnPenRest(double now_s) {
+  Activity(now_s);
+  // Exploring a texture only: a voice has no description, and a take is not interrupted.
+  if (mode_ != SessionMode::kExploring || surface_.voice) return;
+  Speak(Cue::kTextureDescription, surface_.texture);
+}
+
+// The countdown's spoken numbers and the tone, each once, at fixed times after the press: the
+// tone ends where the recording starts, the numbers a step apart before it (the step shrinks
+// when the countdown is too short for 1 s steps after the intro sentence).
+void Session::CountDown(double now_s) {
+  const double tone_at = std::max(0.0, config_.countdown_s - config_.tone_s);
+  const double step = std::min(config_.count_step_s, tone_at / 4.0);
+  const double elapsed = now_s - phase_started_s_;
+  while (next_count_ >= 0 && elapsed >= tone_at - next_count_ * step) {
+    if (next_count_ > 0) {
+      SessionAction action{SessionAction::Kind::kSpeak};
+      action.cue = Cue::kCount;
+      action.count = next_count_;
+      action.surface = surface_;
+      actions_.push_back(action);
+    } else {
+      Speak(Cue::kRecordTone, surface_.texture);
+    }
+    --next_count_;
+  }
+}
+
+void Session::OnStaffActivity(double now_s) {
+  staff_last_s_ = now_s;
+  last_activity_s_ = now_s;
+}
+
 void Session::Tick(double now_s) {
+  if (staff_panel_open_ && now_s - staff_last_s_ >= config_.staff_panel_timeout_s) {
+    // Forgotten open: close it, and the idle timer starts from now (the staff just left).
+    staff_panel_open_ = false;
+    last_activity_s_ = now_s;
+    SessionAction action{SessionAction::Kind::kStaffPanel};
+    action.open = false;
+    actions_.push_back(action);
+  }
   if (button_down_ && !hold_handled_ && now_s - button_down_since_s_ >= config_.long_hold_s) {
     hold_handled_ = true;
     last_activity_s_ = now_s;
     CancelRecordingFlow(true);
+  }
+  if (mode_ == SessionMode::kCountdown) CountDown(now_s);
+  if (mode_ == SessionMode::kAttract && config_.invitation_interval_s > 0.0 &&
+      now_s - last_invitation_s_ >= config_.invitation_interval_s) {
+    last_invitation_s_ = now_s;
+    Speak(Cue::kInvitation, surface_.texture);
   }
   if (mode_ == SessionMode::kCountdown && now_s - phase_started_s_ >= config_.countdown_s) {
     mode_ = SessionMode::kRecording;
@@ -153,14 +208,16 @@ void Session::Tick(double now_s) {
   if (mode_ != SessionMode::kAttract && !busy &&
       now_s - last_activity_s_ >= config_.idle_timeout_s) {
     mode_ = SessionMode::kAttract;
+    visit_counted_ = false;
+    last_invitation_s_ = now_s;  // the first invitation one interval after the reset
     if (has_voice_) {
       has_voice_ = false;
       Emit(SessionAction::Kind::kWipeVoice);
     }
     Emit(SessionAction::Kind::kResetTextures);
-    // Issue 7: back to the default texture. A token left on a switch is picked up again as soon
-    // as it is lifted and placed (the switches report edges).
-    Show({false, config_.default_texture}, false);
+    // The texture of a token left on a switch (the switches report edges, so nothing else would
+    // bring it back), else the default one. Not spoken: nobody is there to hear it.
+    Show({false, token_texture_ < 0 ? config_.default_texture : token_texture_}, false);
     Emit(SessionAction::Kind::kEnterAttract);
   }
 }

@@ -8,13 +8,25 @@
 //
 // Rules (issue 7; paper §5.2 for what visitors did):
 // - Tokens choose one of the textures; switching cross-fades and speaks the texture's name.
-// - Record button: a press starts a countdown, then up to `record_max_s` of recording. Pressing
+// - Record button: a press starts a countdown — "speak after the tone", then the count spoken
+//   (three, two, one, a second apart, or closer when the countdown is short) and the tone —
+//   then up to `record_max_s` of recording. Pressing
 //   again during the countdown, or holding the button for `long_hold_s`, cancels the recording and
 //   speaks the texture's longer description instead (layered information for visitors who cannot
 //   see the screen). A good recording becomes the surface at once; a silent or clipped one gives a
 //   friendly message and the previous surface stays.
-// - After `idle_timeout_s` without pen, token or button activity: back to the default texture,
-//   bubbles un-popped, voice wiped, attract screen. Any touch leaves attract at once.
+// - Layered spoken information without sight: the name when a token is placed; the description
+//   when the pen rests still on the surface (OnPenRest: the engine watches the pen), found by a
+//   visitor who simply stops moving, and told in the spoken invitation.
+// - While idle (attract), the spoken invitation every `invitation_interval_s` (0: never).
+// - After `idle_timeout_s` without pen, token or button activity: bubbles un-popped, voice wiped,
+//   attract screen, and the texture of the token still on a switch (the default texture when
+//   none is): the picture must match the token a visitor sees. Any touch leaves attract at once;
+//   a pen hovering over the attract screen does not (a mouse nudged by a passer-by is no visit).
+// - A visit is counted at its first pen contact, not at a hover, a token or the kiosk's start:
+//   the staff's visit count is people who scratched.
+// - The staff panel closes itself `staff_panel_timeout_s` after the last staff action, so a panel
+//   left open cannot hold off the idle reset for ever.
 
 #include <cstdint>
 #include <string>
@@ -40,6 +52,9 @@ enum class Cue : std::uint8_t {
   kRecordingTooLoud,
   kRecordingUnavailable,
   kVoiceReady,  // "now scratch your voice"
+  kCount,       // the countdown's spoken number (`count`: 3, 2, 1)
+  kRecordTone,  // the tone after which the visitor speaks (a beep, not speech)
+  kInvitation,  // the attract screen's spoken invitation (what to do, and how to hear more)
 };
 
 enum class RecordingOutcome : std::uint8_t { kOk, kSilent, kClipped, kNoMicrophone };
@@ -61,15 +76,20 @@ struct SessionAction {
   SurfaceChoice surface{};
   Cue cue = Cue::kTextureName;
   bool open = false;
+  int count = 0;  // kCount's number
 };
 
 struct SessionConfig {
   int texture_count = 4;
   int default_texture = 0;
   double idle_timeout_s = 60.0;
-  double countdown_s = 3.0;
+  double countdown_s = 3.0;   // the press to the start of the recording (intro, count, tone)
+  double count_step_s = 1.0;  // between the spoken numbers (less when the countdown is short)
+  double tone_s = 0.4;        // the tone before the recording starts
   double record_max_s = 5.0;
   double long_hold_s = 1.2;
+  double staff_panel_timeout_s = 300.0;
+  double invitation_interval_s = 0.0;  // 0: no spoken invitation
 };
 
 // Anonymous usage counters shown on the staff panel (and persisted by the wiring).
@@ -85,7 +105,7 @@ struct UsageCounters {
   std::uint64_t voice_strokes = 0;
   std::uint64_t recordings = 0;  // good recordings that became a surface
   std::uint64_t failed_recordings = 0;
-  std::uint64_t sessions = 0;  // visits: first activity after the attract screen
+  std::uint64_t sessions = 0;  // visits: first pen contact after the attract screen
 
   bool operator==(const UsageCounters&) const = default;
 };
@@ -100,6 +120,12 @@ class Session {
   void OnRecordButton(double now_s, bool pressed);
   void OnRecordingFinished(double now_s, RecordingOutcome outcome);
   void OnStaffChord(double now_s);
+  // The pen has rested still on the surface long enough: the description is spoken.
+  void OnPenRest(double now_s);
+  // Any other visitor input (the language key): leaves attract and restarts the idle timer.
+  void OnVisitorActivity(double now_s) { Activity(now_s); }
+  // A button worked on the open staff panel: restarts the panel's own timeout.
+  void OnStaffActivity(double now_s);
   void Tick(double now_s);
 
   // Outputs: actions since the last call, in order.
@@ -112,6 +138,7 @@ class Session {
   // Seconds left in the countdown (kCountdown) or the recording (kRecording); 0 otherwise.
   double SecondsLeft(double now_s) const;
   const UsageCounters& counters() const { return counters_; }
+  const SessionConfig& config() const { return config_; }
   // Restores persisted counters (sized to the texture count).
   void RestoreCounters(const UsageCounters& counters);
 
@@ -121,6 +148,7 @@ class Session {
   void Emit(SessionAction::Kind kind);
   void Speak(Cue cue, int texture);
   void CancelRecordingFlow(bool speak_description);
+  void CountDown(double now_s);
   int ClampTexture(int texture) const;
 
   SessionConfig config_;
@@ -129,12 +157,16 @@ class Session {
   int token_texture_ = -1;
   bool has_voice_ = false;
   bool staff_panel_open_ = false;
+  double staff_last_s_ = 0.0;
+  bool visit_counted_ = false;  // this visit's first pen contact has been counted
   bool tip_down_ = false;
   bool button_down_ = false;
   bool hold_handled_ = false;
   double button_down_since_s_ = 0.0;
   double last_activity_s_ = 0.0;
   double phase_started_s_ = 0.0;
+  int next_count_ = 0;  // countdown: the number to speak next (3..1), 0: the tone, -1: done
+  double last_invitation_s_ = 0.0;
   UsageCounters counters_;
   std::vector<SessionAction> actions_;
 };

@@ -18,8 +18,9 @@ std::string CueLevelProblem(const AudioClip& clip) {
 }
 
 const std::vector<std::string>& MessageCueNames() {
-  static const std::vector<std::string> names = {"record_countdown", "too_quiet", "too_loud",
-                                                 "no_microphone", "voice_ready"};
+  static const std::vector<std::string> names = {
+      "record_countdown", "count_3",       "count_2",     "count_1",    "too_quiet",
+      "too_loud",         "no_microphone", "voice_ready", "invitation", "language"};
   return names;
 }
 

@@ -2,9 +2,9 @@
 // The kiosk's spoken cues (issue 7: for visitors who cannot see the screen), loaded into RAM once
 // at start so playing one never touches the disk. The files are made at build time by
 // textures/cue_maker (espeak-ng speech, 48 kHz mono, loudness-normalised) into <build>/textures/
-// cues/ and installed with the textures (share/sketch-a-scratch/textures/cues/):
+// cues/<language>/ and installed to share/sketch-a-scratch/cues/<language>/:
 //   <texture folder>_name.wav, <texture folder>_description.wav   one pair per texture
-//   record_countdown.wav  too_quiet.wav  too_loud.wav  no_microphone.wav  voice_ready.wav
+//   one <message>.wav per MessageCueNames() (the count, the invitation, the recording messages)
 // A missing or unreadable cue is not fatal: it is listed in problems() (for the journal and the
 // staff panel) and Find() returns nullptr for it, so the kiosk simply stays silent there.
 // Set-up only.

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <utility>
 
 namespace sas::ui {
@@ -136,8 +137,44 @@ struct KioskWindow::Impl {
   std::vector<Cached> cache;
   SDL_Texture* patch_texture = nullptr;
   int patch_w = 0, patch_h = 0;
+  // GPU textures of the text lines on screen (white, alpha = coverage; tinted when drawn), kept
+  // while a frame still shows them.
+  struct TextTexture {
+    std::shared_ptr<const TextMask> mask;
+    SDL_Texture* texture = nullptr;
+    bool used = false;
+  };
+  std::map<const TextMask*, TextTexture> text_textures;
 
   ~Impl() { Close(); }
+
+  SDL_Texture* TextureFor(const std::shared_ptr<const TextMask>& mask) {
+    auto& entry = text_textures[mask.get()];
+    entry.used = true;
+    if (entry.texture != nullptr || mask->w <= 0 || mask->h <= 0) return entry.texture;
+    entry.mask = mask;
+    std::vector<std::uint8_t> rgba(mask->alpha.size() * 4, 255);
+    for (std::size_t i = 0; i < mask->alpha.size(); ++i) rgba[4 * i + 3] = mask->alpha[i];
+    entry.texture = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STATIC,
+                                      mask->w, mask->h);
+    if (entry.texture != nullptr) {
+      SDL_UpdateTexture(entry.texture, nullptr, rgba.data(), mask->w * 4);
+      SDL_SetTextureBlendMode(entry.texture, SDL_BLENDMODE_BLEND);
+    }
+    return entry.texture;
+  }
+
+  void ReleaseUnusedText() {
+    for (auto it = text_textures.begin(); it != text_textures.end();) {
+      if (!it->second.used) {
+        if (it->second.texture) SDL_DestroyTexture(it->second.texture);
+        it = text_textures.erase(it);
+      } else {
+        it->second.used = false;
+        ++it;
+      }
+    }
+  }
 
   // Event time on the monotonic clock, never earlier than the previous event's: SDL's 1 ms
   // timestamps could otherwise put two close events out of order, and the audio side splits its
@@ -150,6 +187,10 @@ struct KioskWindow::Impl {
   void Close() {
     for (auto& c : cache) SDL_DestroyTexture(c.texture);
     cache.clear();
+    for (auto& [mask, text] : text_textures) {
+      if (text.texture) SDL_DestroyTexture(text.texture);
+    }
+    text_textures.clear();
     if (patch_texture) SDL_DestroyTexture(patch_texture);
     patch_texture = nullptr;
     patch_w = patch_h = 0;
@@ -253,6 +294,11 @@ struct KioskWindow::Impl {
       e.kind = UiEvent::Kind::kRecordKey;
       e.time_ns = t;
       e.pressed = down;
+      out.push_back(e);
+    } else if (code == SDLK_l && down) {
+      UiEvent e;
+      e.kind = UiEvent::Kind::kLanguageKey;
+      e.time_ns = t;
       out.push_back(e);
     }
     // Everything else — Escape, Alt-F4, Ctrl-Q, Ctrl-W... — is deliberately ignored.
@@ -507,10 +553,21 @@ void KioskWindow::Present(const Frame& frame, ImageRgba* read_back) {
   }
   SDL_SetRenderDrawBlendMode(m.renderer, SDL_BLENDMODE_BLEND);
   for (const auto& s : frame.overlays) {
-    SDL_SetRenderDrawColor(m.renderer, s.color.r, s.color.g, s.color.b, s.color.a);
     const SDL_Rect r{s.rect.x, s.rect.y, s.rect.w, s.rect.h};
+    if (s.mask) {
+      // The same pixels as DrawOverlays: the colour at its alpha times the coverage.
+      if (SDL_Texture* text = m.TextureFor(s.mask)) {
+        SDL_SetTextureColorMod(text, s.color.r, s.color.g, s.color.b);
+        SDL_SetTextureAlphaMod(text, s.color.a);
+        const SDL_Rect size{s.rect.x, s.rect.y, s.mask->w, s.mask->h};
+        SDL_RenderCopy(m.renderer, text, nullptr, &size);
+      }
+      continue;
+    }
+    SDL_SetRenderDrawColor(m.renderer, s.color.r, s.color.g, s.color.b, s.color.a);
     SDL_RenderFillRect(m.renderer, &r);
   }
+  m.ReleaseUnusedText();
   if (read_back) {
     read_back->Reshape(m.width, m.height);
     if (SDL_RenderReadPixels(m.renderer, nullptr, SDL_PIXELFORMAT_RGBA32, read_back->data(),

@@ -65,8 +65,9 @@ void AddRecordingDot(Overlays& out, int width, int height) {
 }
 
 PixelRect StaffPanelRect(int width, int height) {
-  const int w = width * 3 / 5;
-  const int h = height * 3 / 5;
+  // Most of the screen: the status lines stay readable at 720p without a small font.
+  const int w = width * 4 / 5;
+  const int h = height * 21 / 25;
   return {(width - w) / 2, (height - h) / 2, w, h};
 }
 
@@ -77,7 +78,26 @@ void AddStaffPanelFrame(Overlays& out, int width, int height) {
 }
 
 void DrawOverlays(const Overlays& overlays, ImageRgba& target) {
-  for (const auto& s : overlays) FillRectBlend(target, s.rect, s.color);
+  for (const auto& s : overlays) {
+    if (!s.mask) {
+      FillRectBlend(target, s.rect, s.color);
+      continue;
+    }
+    // Text: the colour at its alpha times the glyphs' coverage, blended as SDL's blend mode does.
+    const auto& m = *s.mask;
+    for (int y = 0; y < m.h; ++y) {
+      const int ty = s.rect.y + y;
+      if (ty < 0 || ty >= target.height()) continue;
+      for (int x = 0; x < m.w; ++x) {
+        const int tx = s.rect.x + x;
+        if (tx < 0 || tx >= target.width()) continue;
+        const int a = m.alpha[static_cast<std::size_t>(y * m.w + x)] * s.color.a / 255;
+        if (a == 0) continue;
+        FillRectBlend(target, {tx, ty, 1, 1},
+                      {s.color.r, s.color.g, s.color.b, static_cast<std::uint8_t>(a)});
+      }
+    }
+  }
 }
 
 }  // namespace sas::ui

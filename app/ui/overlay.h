@@ -4,15 +4,29 @@
 // colour whose alpha is its coverage; the window draws them with SDL's blended fill and the
 // software compositor with FillRectBlend, so both give the same pixels. Text comes later.
 
+#include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "ui/image_rgba.h"
 
 namespace sas::ui {
 
+// A line of text rendered once (ui/ttf_text.h): its coverage per pixel, and the text it shows
+// (tests read what a screen says from it).
+struct TextMask {
+  int w = 0, h = 0;
+  std::vector<std::uint8_t> alpha;  // w * h, row by row
+  std::string text;
+};
+
+// A filled rectangle, or with `mask` the text whose coverage scales `color`'s alpha (the rect is
+// the mask's size where it is drawn).
 struct OverlayShape {
   PixelRect rect;
   Rgba color;
+  std::shared_ptr<const TextMask> mask{};
   bool operator==(const OverlayShape&) const = default;
 };
 

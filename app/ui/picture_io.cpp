@@ -90,4 +90,17 @@ void SavePng(const ImageRgba& image, const std::string& path) {
   if (!ok) throw PictureError(path + ": cannot write PNG");
 }
 
+void SaveJpeg(const ImageRgba& image, const std::string& path, int quality) {
+  if (image.empty()) throw PictureError(path + ": nothing to save (empty image)");
+  cv::Mat bgr;
+  cv::cvtColor(WrapRgba(image), bgr, cv::COLOR_RGBA2BGR);
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, bgr, {cv::IMWRITE_JPEG_QUALITY, quality});
+  } catch (const cv::Exception& e) {
+    throw PictureError(path + ": cannot write JPEG (" + e.what() + ")");
+  }
+  if (!ok) throw PictureError(path + ": cannot write JPEG");
+}
+
 }  // namespace sas::ui

@@ -31,5 +31,7 @@ ImageRgba FromGrayImage(const surface::GrayImage& gray);
 
 // Writes `image` as an 8-bit RGB PNG. Throws PictureError naming the file on failure.
 void SavePng(const ImageRgba& image, const std::string& path);
+// JPEG at `quality` (0-100): screenshots for the documentation, a tenth of the PNG's size.
+void SaveJpeg(const ImageRgba& image, const std::string& path, int quality = 85);
 
 }  // namespace sas::ui

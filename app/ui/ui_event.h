@@ -17,6 +17,7 @@ struct UiEvent {
     kPointerUp,    // tip lifted; `stylus` is the last position with pressure 0
     kTokenKey,     // keyboard token fallback: `token` 0..3 for keys 1..4, -1 for key 0
     kRecordKey,    // keyboard record button: `pressed` true on press, false on release
+    kLanguageKey,  // the visitor's language key (L) pressed: the next language
     kStaffChord,   // the staff chord completed; `pressed` = staff panel now open
     kRedraw,       // the window was exposed or resized: draw a full frame even if nothing changed
   };

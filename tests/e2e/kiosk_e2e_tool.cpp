@@ -215,7 +215,8 @@ int Dent(const std::string& shot_path, const std::string& picture_path, int cx, 
 int Voice(const std::string& shot_path) {
   const auto shot = sas::ui::LoadPicture(shot_path);
   int grey_violations = 0, flat_rows = 0, busy_rows = 0, rows = 0;
-  for (int y = 0; y < shot.height(); y += 4) {
+  // The bottom eighth holds the "now scratch your voice" banner for its first seconds.
+  for (int y = 0; y < shot.height() - shot.height() / 8; y += 4) {
     double sum = 0.0, sum_sq = 0.0;
     for (int x = 0; x < shot.width(); ++x) {
       const auto p = shot.at(x, y);

@@ -85,6 +85,7 @@ backend = "gpio"
 # Not the default offsets, so the edges only arrive if the configured lines are mapped.
 gpio_lines = ["5", "6", "13", "19", "26"]
 EOF
+cp "$work/kiosk.toml" "$work/kiosk.toml.before"
 
 Xvfb -displayfd 3 -screen 0 "${width}x${height}x24" -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
 xvfb_pid=$!
@@ -197,9 +198,22 @@ xdotool keyup s alt ctrl
 wait_log 'staff panel opened' 30 || fail "the staff chord did not open the panel"
 sleep 0.5
 shot staff
-convert "$work/staff.png" -crop 1x1+$((width / 2))+$((height / 2)) -format '%[fx:int(255*r)]' info: >"$work/panel.txt"
+# The mean over the middle 40x40 pixels: the panel's text runs across it, the dark plate dominates.
+convert "$work/staff.png" -crop 40x40+$((width / 2 - 20))+$((height / 2 - 20)) +repage \
+  -format '%[fx:int(255*mean.r)]' info: >"$work/panel.txt"
 [ "$(cat "$work/panel.txt")" -lt 90 ] || fail "no staff panel drawn"
 echo "ok: staff chord opens the staff panel"
+# The panel's "Volume +" (the fifth of seven buttons along its bottom edge, live_kiosk.cpp's
+# StaffButtonRects): one step up, applied and kept in the state folder, not in the config file.
+panel_w=$((width * 4 / 5)); panel_h=$((height * 21 / 25))
+button_w=$(( (panel_w - 8 * 12) / 7 )); [ "$button_w" -gt 200 ] && button_w=200
+volume_up_x=$(( (width - panel_w) / 2 + 12 + 4 * (12 + button_w) + button_w / 2 ))
+volume_up_y=$(( (height - panel_h) / 2 + panel_h - 12 - 22 ))
+xdotool mousemove "$volume_up_x" "$volume_up_y" click 1
+wait_log 'staff: volume 3 dB, vibration 0 dB' 30 || fail "the panel's Volume + did not step the volume"
+grep -qx 'volume_db = 3.0' "$work/state/staff.toml" || fail "the volume step was not kept in staff.toml"
+cmp -s "$work/kiosk.toml.before" "$work/kiosk.toml" || fail "the staff's configuration file was rewritten"
+echo "ok: the panel's Volume + steps the volume and keeps it in the state folder"
 xdotool keydown ctrl+alt+s
 sleep 1.3
 xdotool keyup s alt ctrl

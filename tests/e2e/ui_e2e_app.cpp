@@ -121,6 +121,9 @@ int Window(int argc, char** argv) {
         case K::kRecordKey:
           std::printf("record %s\n", e.pressed ? "pressed" : "released");
           break;
+        case K::kLanguageKey:
+          std::printf("language\n");
+          break;
         case K::kRedraw:
           view.Invalidate();
           break;

@@ -66,6 +66,12 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.sound_gain_db == defaults.sound_gain_db);
   CHECK(shipped.haptic_gain_db == defaults.haptic_gain_db);
   CHECK(shipped.idle_timeout_s == defaults.idle_timeout_s);
+  CHECK(shipped.staff_panel_timeout_s == defaults.staff_panel_timeout_s);
+  CHECK(shipped.language == defaults.language);
+  CHECK(shipped.describe_after_rest_s == defaults.describe_after_rest_s);
+  CHECK(shipped.attract_passive_stroke == defaults.attract_passive_stroke);
+  CHECK(shipped.invitation_interval_s == defaults.invitation_interval_s);
+  CHECK(shipped.visitor_languages == defaults.visitor_languages);
   CHECK(shipped.default_texture == defaults.default_texture);
   CHECK(shipped.reopen_backoff_max_s == defaults.reopen_backoff_max_s);
   CHECK(shipped.record_silence_rms_dbfs == defaults.record_silence_rms_dbfs);
@@ -236,7 +242,7 @@ TEST_CASE(
              Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
   CHECK_THAT(
       sas::kiosk::ConfigStatusLine(path, loaded),
-      Catch::StartsWith("CONFIG: " + path + " BAD, USING THE LAST GOOD ONE: " + path + ":3:"));
+      Catch::StartsWith("Config: " + path + " bad, using the last good one: " + path + ":3:"));
 
   // No last good copy: the built-in defaults, and it says so, key included.
   sas::platform::DeviceStatusBoard fresh(log);
@@ -249,5 +255,5 @@ TEST_CASE(
              Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
                  Catch::EndsWith("(using the built-in defaults)"));
   CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
-             Catch::Contains(" NOT USED, DEFAULTS: " + path + ":2: session.idle_timeout_s: "));
+             Catch::Contains(" not used, defaults: " + path + ":2: session.idle_timeout_s: "));
 }

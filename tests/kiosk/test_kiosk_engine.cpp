@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <vector>
 
@@ -173,7 +174,7 @@ TEST_CASE("engine: a recording becomes the surface, and the idle reset wipes it 
   };
   engine.OnRecordButton(t, true);
   engine.OnRecordButton(t + 1'000'000, false);
-  advance(3.0 + 5.2);  // countdown, then the whole 5 s take
+  advance(5.5 + 5.2);  // countdown (intro, count, tone), then the whole 5 s take
   REQUIRE(engine.has_voice());
   REQUIRE(engine.surface().voice);
   REQUIRE(engine.voice_image() != nullptr);
@@ -374,4 +375,68 @@ TEST_CASE("engine: the staff's exposure figure is the mean square of what went t
   CHECK(*engine.exposure().LastHourDb() == Approx(expected_db).margin(0.01));
   CHECK(expected_db > -80.0);                // the stroke was heard
   REQUIRE(engine.exposure().LastVisitDb());  // the visit is still going on (no idle yet)
+}
+
+namespace {
+
+// The speaker (channel 0) RMS of the staff test tone (1 s) and then the transducer (channel 1)
+// RMS of the staff sweep (2 s), each over a steady 0.5 s (one clip plays at a time).
+std::pair<double, double> StaffSignalsRms(KioskEngine& engine) {
+  engine.SetAudioRunning(true);
+  const auto rms = [&](int channel) {
+    RenderBlocks(engine, 4);
+    channel == 0 ? engine.PlayTestTone() : engine.PlayTransducerSweep();
+    const auto out = RenderBlocks(engine, 300);  // 0.8 s
+    double sum = 0.0;
+    const std::size_t from = 9600, to = 33600;  // 0.2 .. 0.7 s
+    for (std::size_t i = from; i < to; ++i) {
+      const double x = out[2 * i + static_cast<std::size_t>(channel)];
+      sum += x * x;
+    }
+    RenderBlocks(engine, 600);  // let the clip end
+    return std::sqrt(sum / static_cast<double>(to - from));
+  };
+  const double speaker = rms(0);
+  return {speaker, rms(1)};
+}
+
+}  // namespace
+
+TEST_CASE("engine: staff volume and vibration steps change the output and survive a restart",
+          "[kiosk]") {
+  sas::test::TempDir dir;
+  auto options = Options();
+  const auto [speaker_ref, transducer_ref] = [&] {
+    KioskEngine reference(options);  // no staff file: the configured gains alone
+    return StaffSignalsRms(reference);
+  }();
+  REQUIRE(speaker_ref > 0.05);
+  REQUIRE(transducer_ref > 0.05);
+  options.staff_settings_path = dir.file("staff.toml");
+  {
+    KioskEngine engine(options);
+    CHECK(engine.staff_settings() == sas::kiosk::StaffSettings{});
+    engine.StepVolume(-1);
+    engine.StepVolume(-1);     // -6 dB
+    engine.StepVibration(-1);  // -3 dB
+    engine.SetLowVibration(true);
+    const auto [speaker, transducer] = StaffSignalsRms(engine);
+    CHECK(20.0 * std::log10(speaker / speaker_ref) == Approx(-6.0).margin(0.1));
+    // -3 dB, and low vibration's lowered ceiling limits the sweep's peaks further.
+    CHECK(20.0 * std::log10(transducer / transducer_ref) < -3.0 + 0.1);
+  }
+  // Only the state folder's own file was written (the staff's configuration is never touched).
+  std::vector<std::string> written;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    written.push_back(entry.path().filename().string());
+  }
+  CHECK(written == std::vector<std::string>{"staff.toml"});
+  KioskEngine restarted(options);
+  CHECK(restarted.staff_settings().volume_db == -6.0);
+  CHECK(restarted.staff_settings().vibration_db == -3.0);
+  CHECK(restarted.low_vibration());
+  restarted.SetLowVibration(false);
+  const auto [speaker, transducer] = StaffSignalsRms(restarted);
+  CHECK(20.0 * std::log10(speaker / speaker_ref) == Approx(-6.0).margin(0.1));
+  CHECK(20.0 * std::log10(transducer / transducer_ref) == Approx(-3.0).margin(0.1));
 }

@@ -146,7 +146,7 @@ TEST_CASE("a second press during the countdown or a long hold speaks the descrip
   }
 }
 
-TEST_CASE("after the idle timeout the voice is wiped, bubbles reset, default texture, attract",
+TEST_CASE("after the idle timeout the voice is wiped, bubbles reset, the token's texture, attract",
           "[kiosk]") {
   Session session(Config());
   session.OnTokenSelection(0.0, 3);
@@ -167,7 +167,7 @@ TEST_CASE("after the idle timeout the voice is wiped, bubbles reset, default tex
   CHECK(Count(actions, Kind::kEnterAttract) == 1);
   CHECK_FALSE(session.has_voice());
   CHECK(session.mode() == SessionMode::kAttract);
-  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 2});
+  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 3});  // the token is still there
   // Any touch leaves the attract screen at once and starts a new visit.
   session.OnPen(80.0, true);
   CHECK(Count(session.TakeActions(), Kind::kLeaveAttract) == 1);
@@ -200,4 +200,95 @@ TEST_CASE("strokes are counted per texture and for the voice surface", "[kiosk]"
   session.OnTokenSelection(6.0, 0);
   session.OnPen(7.0, true);
   CHECK(session.counters().strokes_per_texture == std::vector<std::uint64_t>{1, 3, 0, 0});
+}
+
+TEST_CASE("after an idle reset the texture follows the token still on a switch", "[kiosk]") {
+  Session session(Config());
+  session.OnTokenSelection(0.0, 1);  // broken glass, and the visitor walks away leaving it
+  session.OnPen(1.0, true);
+  session.OnPen(2.0, false);
+  session.TakeActions();
+  session.Tick(62.0);
+  const auto actions = session.TakeActions();
+  REQUIRE(session.mode() == SessionMode::kAttract);
+  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 1});
+  CHECK(Find(actions, Kind::kSpeak) == nullptr);  // nobody there to hear the name
+  // Lifted during the attract screen: the default texture again.
+  session.OnTokenSelection(70.0, -1);
+  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 2});
+}
+
+TEST_CASE("a voice surface left by a visitor goes back to the token's texture at the idle reset",
+          "[kiosk]") {
+  Session session(Config());
+  session.OnTokenSelection(0.0, 3);
+  session.OnRecordButton(1.0, true);
+  session.OnRecordButton(1.1, false);
+  session.Tick(4.0);
+  session.Tick(9.0);
+  session.OnRecordingFinished(9.0, RecordingOutcome::kOk);
+  REQUIRE(session.surface().voice);
+  session.Tick(70.0);
+  CHECK(session.surface() == sas::kiosk::SurfaceChoice{false, 3});
+}
+
+TEST_CASE("the staff panel closes itself after its timeout and the idle reset follows", "[kiosk]") {
+  SessionConfig config = Config();
+  config.staff_panel_timeout_s = 120.0;
+  Session session(config);
+  session.OnPen(0.0, true);
+  session.OnPen(1.0, false);
+  session.OnStaffChord(10.0);
+  REQUIRE(session.staff_panel_open());
+  session.TakeActions();
+  session.OnStaffActivity(100.0);  // a button on the panel: the timeout restarts
+  session.Tick(219.0);
+  CHECK(session.staff_panel_open());
+  CHECK(session.mode() == SessionMode::kExploring);  // staff at work: no idle reset
+  session.Tick(220.0);
+  CHECK_FALSE(session.staff_panel_open());
+  const auto actions = session.TakeActions();
+  const auto* closed = Find(actions, Kind::kStaffPanel);
+  REQUIRE(closed != nullptr);
+  CHECK_FALSE(closed->open);
+  // The idle timer starts when the panel closed, not when staff opened it.
+  session.Tick(279.0);
+  CHECK(session.mode() == SessionMode::kExploring);
+  session.Tick(280.0);
+  CHECK(session.mode() == SessionMode::kAttract);
+  // The chord opens it again as before.
+  session.OnStaffChord(300.0);
+  CHECK(session.staff_panel_open());
+}
+
+TEST_CASE("a visit is counted at its first pen contact only", "[kiosk]") {
+  Session session(Config());
+  // A mouse hover over the attract screen is nobody: it neither leaves attract nor counts.
+  session.OnPen(1.0, false);
+  session.OnPen(1.5, false);
+  CHECK(session.mode() == SessionMode::kAttract);
+  CHECK(session.TakeActions().empty());
+  // A token put on (or found on a switch at start) leaves attract but is not yet a visit.
+  session.OnTokenSelection(2.0, 0);
+  CHECK(session.mode() == SessionMode::kExploring);
+  CHECK(session.counters().sessions == 0);
+  session.OnPen(3.0, false);  // hovering while exploring
+  CHECK(session.counters().sessions == 0);
+  session.OnPen(4.0, true);  // the pen touches: one visit
+  CHECK(session.counters().sessions == 1);
+  session.OnPen(5.0, false);
+  session.OnPen(6.0, true);  // more strokes in the same visit
+  session.OnPen(7.0, false);
+  CHECK(session.counters().sessions == 1);
+  CHECK(session.counters().strokes_per_texture[0] == 2);
+  // Idle reset, then only a record press and a token: still no second visit.
+  session.Tick(67.0);
+  REQUIRE(session.mode() == SessionMode::kAttract);
+  session.OnRecordButton(70.0, true);
+  session.OnRecordButton(70.1, false);
+  session.OnRecordButton(70.2, true);  // second press: the description instead
+  session.OnRecordButton(70.3, false);
+  CHECK(session.counters().sessions == 1);
+  session.OnPen(71.0, true);
+  CHECK(session.counters().sessions == 2);
 }

@@ -52,48 +52,56 @@ TEST_CASE("the cue library loads every cue into RAM and names the missing ones",
   CHECK(library.Find("too_loud") == nullptr);  // silent: useless to a visitor
   CHECK(library.Find("voice_ready") == nullptr);
   CHECK(library.size() == 2);
-  // 7 expected files, 2 loaded: 5 problems, each naming its file.
-  REQUIRE(library.problems().size() == 5);
+  // 12 expected files (2 for the texture, 10 messages), 2 loaded: 10 problems, each naming its
+  // file.
+  REQUIRE(library.problems().size() == 10);
   std::string all;
   for (const auto& p : library.problems()) all += p + "\n";
   CHECK_THAT(all, Catch::Contains("wooden_board_description.wav: missing") &&
                       Catch::Contains("too_loud.wav: silent") &&
                       Catch::Contains("voice_ready.wav") &&
                       Catch::Contains("record_countdown.wav: missing") &&
-                      Catch::Contains("no_microphone.wav: missing"));
+                      Catch::Contains("no_microphone.wav: missing") &&
+                      Catch::Contains("count_2.wav: missing") &&
+                      Catch::Contains("invitation.wav: missing"));
 }
 
 #if defined(SAS_CUES_DIR)
 TEST_CASE(
-    "every generated spoken cue exists and is 48 kHz mono, audible, unclipped and 0.3 to 8 s long",
+    "every generated spoken cue in every language exists and is 48 kHz mono, audible, unclipped "
+    "and 0.2 to 10 s long",
     "[surface]") {
   const auto files = ExpectedCueFiles(kTextures);
-  CHECK(files.size() == 13);
-  for (const auto& file : files) {
-    const std::string path = std::string(SAS_CUES_DIR) + "/" + file;
-    INFO(path);
-    SF_INFO info{};
-    SNDFILE* sf = sf_open(path.c_str(), SFM_READ, &info);
-    REQUIRE(sf != nullptr);
-    std::vector<float> x(static_cast<std::size_t>(info.frames * info.channels));
-    const sf_count_t read = sf_readf_float(sf, x.data(), info.frames);
-    sf_close(sf);
-    REQUIRE(read == info.frames);
-    CHECK(info.samplerate == 48000);
-    CHECK(info.channels == 1);
-    const double seconds = static_cast<double>(info.frames) / 48000.0;
-    CHECK(seconds >= 0.3);
-    CHECK(seconds <= 8.0);
-    float peak = 0.0f;
-    for (float v : x) peak = std::max(peak, std::fabs(v));
-    CHECK(peak > 0.1f);   // audible: within 20 dB of full scale
-    CHECK(peak < 0.95f);  // never clipped (normalised to a -1 dBFS peak at most)
-    const double lufs = sas::surface::KWeightedLoudnessDb(x, 48000.0, 0, x.size());
-    CHECK(lufs <= -22.5);  // normalised to -23 LUFS (or less, where the peak limit wins)
-    CHECK(lufs >= -30.0);
+  CHECK(files.size() == 18);
+  for (const char* language : {"en", "de", "fr", "it", "es"}) {
+    const std::string dir = std::string(SAS_CUES_DIR) + "/" + language;
+    for (const auto& file : files) {
+      const std::string path = dir + "/" + file;
+      INFO(path);
+      SF_INFO info{};
+      SNDFILE* sf = sf_open(path.c_str(), SFM_READ, &info);
+      REQUIRE(sf != nullptr);
+      std::vector<float> x(static_cast<std::size_t>(info.frames * info.channels));
+      const sf_count_t read = sf_readf_float(sf, x.data(), info.frames);
+      sf_close(sf);
+      REQUIRE(read == info.frames);
+      CHECK(info.samplerate == 48000);
+      CHECK(info.channels == 1);
+      // A count ("Two.") is short; the invitation is the longest sentence.
+      const double seconds = static_cast<double>(info.frames) / 48000.0;
+      CHECK(seconds >= 0.2);
+      CHECK(seconds <= 10.0);
+      float peak = 0.0f;
+      for (float v : x) peak = std::max(peak, std::fabs(v));
+      CHECK(peak > 0.1f);   // audible: within 20 dB of full scale
+      CHECK(peak < 0.95f);  // never clipped (normalised to a -1 dBFS peak at most)
+      const double lufs = sas::surface::KWeightedLoudnessDb(x, 48000.0, 0, x.size());
+      CHECK(lufs <= -22.5);  // normalised to -23 LUFS (or less, where the peak limit wins)
+      CHECK(lufs >= -30.0);
+    }
+    const CueLibrary library = CueLibrary::Load(dir, kTextures);
+    CHECK(library.problems().empty());
+    CHECK(library.size() == files.size());
   }
-  const CueLibrary library = CueLibrary::Load(SAS_CUES_DIR, kTextures);
-  CHECK(library.problems().empty());
-  CHECK(library.size() == files.size());
 }
 #endif
