@@ -10,7 +10,7 @@
 namespace sas::platform {
 
 // The configuration keys that steer device choice (mirrors the kiosk's [audio], [switches] and
-// [pen] sections; see README "Devices").
+// [pen] sections; see README "Configuration").
 struct DeviceSelection {
   std::string audio_output = "default";
   std::string audio_input = "default";

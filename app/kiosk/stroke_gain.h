@@ -36,7 +36,7 @@
 // Where the levels change smoothly the two differ by a fraction of a dB. For vibration the dB
 // average stays: glass's vibration comes from the cracks a stroke crosses, and there the power
 // average did worse (summed spreads 57.7 dB instead of 53.6). A level table cannot follow every
-// regime change between its points (README, "Textures, loudness matching and spoken cues", gives
+// regime change between its points (docs/engineering.md, "Textures, loudness matching and spoken cues", gives
 // what it leaves).
 //
 // Run time (KioskEngine, control thread): the pen's speed and pressure are smoothed (StrokeTracker:

@@ -1,6 +1,6 @@
 #pragma once
 // A kiosk texture's description file, textures/<name>/texture.toml (written by the texture
-// generator; see textures/README section in the project README). It names the picture and the
+// generator; see docs/engineering.md, "Surfaces and the four textures"). It names the picture and the
 // true height map next to it, the material (a file in textures/materials/), the gains, the probe
 // defaults, the one-sentence description the kiosk speaks, and for bubble wrap the bubble layout
 // and pop force:

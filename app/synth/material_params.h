@@ -39,7 +39,7 @@ enum class ContactScheme : std::uint8_t {
 };
 
 // The scheme a material gets unless its file says otherwise: the cheapest one that meets the
-// 1e-4 restitution target at 48 kHz (measured; the numbers are in synth/contact.h and README.md).
+// 1e-4 restitution target at 48 kHz (measured; the numbers are in synth/contact.h and docs/contact-bench.md).
 inline constexpr ContactScheme kDefaultContactScheme = ContactScheme::kDiscreteGradient;
 
 // Update of the elasto-plastic bristle deflection z over a step (friction.md, numerical trap 1).

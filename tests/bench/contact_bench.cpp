@@ -21,7 +21,7 @@
 // thread).
 //
 // Outputs (directory --out, default <build>/bench-results): contact_bench.csv (every
-// measurement), contact_bench.md (the tables README.md includes), contact_bench.png (error
+// measurement), contact_bench.md (the tables docs/contact-bench.md holds), contact_bench.png (error
 // against cost, log-log, one colour and marker per scheme, Pareto front per case).
 //
 // Usage: contact_bench [--out DIR] [--quick] [--scene-only] [--reps N] [--stress N]
@@ -1058,7 +1058,7 @@ Options ParseArgs(int argc, char** argv) {
       std::printf(
           "usage: contact_bench [--out DIR] [--docs DIR|-] [--quick] [--scene-only] [--front] [--reps N] "
           "[--stress N] "
-          "[--update-readme README.md]\n");
+          "[--update-readme docs/engineering.md]\n");
       std::exit(0);
     } else {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
@@ -1171,7 +1171,7 @@ int main(int argc, char** argv) {
   kiosk::Gesture stroke = *kiosk::FindBuiltinGesture("slow stroke");
   for (auto& sample : stroke.samples) sample.tilt_deg = 0.0;
   const auto stroke_commands = kiosk::GestureToCommands(stroke, mapping, kFs);
-  synth::OutputParams kiosk_output;  // the kiosk's default gains (README: +12 dB, +6 dB)
+  synth::OutputParams kiosk_output;  // the kiosk's default gains (README, Configuration)
   kiosk_output.sound_gain = std::pow(10.0, 12.0 / 20.0);
   kiosk_output.haptic_gain = std::pow(10.0, 6.0 / 20.0);
   const long stroke_frames = static_cast<long>((opt.quick ? 0.6 : stroke.duration_s()) * kFs);

@@ -1,5 +1,5 @@
 #!/bin/bash
-# The UI latency while the audio device is gone (README "Reliability"): runs ui_latency_audio_loss
+# The UI latency while the audio device is gone (docs/engineering.md, "Reliability"): runs ui_latency_audio_loss
 # (the live kiosk's code with a fake audio device removed for 10 s, every reopen hanging 3 s) under
 # Xvfb while xdotool draws strokes on it the whole time, and lets the tool write its report.
 # A measurement, run by hand (never by CTest):

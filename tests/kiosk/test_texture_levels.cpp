@@ -274,7 +274,7 @@ TEST_CASE(
 // scrape: 5 dB louder than the others; a rub at 60 mm/s p0.25 was 10 dB louder before the sound
 // levels were interpolated as powers, stroke_gain.h) and its vibration comes only from cracks
 // crossed. At a single place the same stroke differs by up to 21 / 37 dB. The bounds are the
-// measured worst plus ~0.5 dB, so a change that makes a stroke jump still shows. README,
+// measured worst plus ~0.5 dB, so a change that makes a stroke jump still shows. docs/engineering.md,
 // "Textures, loudness matching and spoken cues". The discrete gradient's covariance-corrected
 // loss (synth/contact.cpp) moved the worst vibration spread from 16.9 to 19.0 dB (the textures
 // recalibrated; glass's crack-only vibration is the chaotic one): bound 17.4 -> 19.5 dB.
