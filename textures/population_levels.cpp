@@ -24,19 +24,6 @@
 #include "kiosk/texture_levels.h"
 #include "surface/texture_file.h"
 
-namespace {
-
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = p * static_cast<double>(v.size() - 1);
-  const auto i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   CLI::App app{"Texture loudness over a population of visitor strokes", "population_levels"};
   std::string textures = "textures";
@@ -83,15 +70,16 @@ int main(int argc, char** argv) {
         by_style[strokes[i].name].first.push_back(levels[i].sound_lufs);
         by_style[strokes[i].name].second.push_back(levels[i].haptic_rms_db);
       }
-      row.sound_median = Percentile(sound, 0.5);
-      row.sound_p5 = Percentile(sound, 0.05);
-      row.sound_p95 = Percentile(sound, 0.95);
+      row.sound_median = sas::kiosk::Percentile(sound, 0.5);
+      row.sound_p5 = sas::kiosk::Percentile(sound, 0.05);
+      row.sound_p95 = sas::kiosk::Percentile(sound, 0.95);
       row.sound_max = *std::max_element(sound.begin(), sound.end());
-      row.haptic_median = Percentile(haptic, 0.5);
-      row.haptic_p5 = Percentile(haptic, 0.05);
-      row.haptic_p95 = Percentile(haptic, 0.95);
+      row.haptic_median = sas::kiosk::Percentile(haptic, 0.5);
+      row.haptic_p5 = sas::kiosk::Percentile(haptic, 0.05);
+      row.haptic_p95 = sas::kiosk::Percentile(haptic, 0.95);
       for (const auto& [style, v] : by_style) {
-        row.per_style[style] = {Percentile(v.first, 0.5), Percentile(v.second, 0.5)};
+        row.per_style[style] = {sas::kiosk::Percentile(v.first, 0.5),
+                                sas::kiosk::Percentile(v.second, 0.5)};
       }
       rows.push_back(row);
       std::fprintf(stderr, "%s measured\n", row.name.c_str());

@@ -7,7 +7,9 @@
 
 #include <cerrno>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
+#include <string>
 
 namespace sas::kiosk {
 namespace {
@@ -77,6 +79,20 @@ void RemoveStaleTemporaries(const std::string& path) {
       std::filesystem::remove(entry.path(), error);
     }
   }
+}
+
+std::string AsidePath(const std::string& path) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+  std::string aside = path + ".damaged-" + stamp;
+  struct stat info {};
+  for (int n = 2; stat(aside.c_str(), &info) == 0; ++n) {
+    aside = path + ".damaged-" + stamp + "-" + std::to_string(n);
+  }
+  return aside;
 }
 
 }  // namespace sas::kiosk

@@ -17,4 +17,8 @@ bool AtomicWriteFile(const std::string& path, const std::string& contents, std::
 // between creating and renaming one (".<name>.XXXXXX"); `path` itself is never touched.
 void RemoveStaleTemporaries(const std::string& path);
 
+// Where a damaged state file is set aside so that nothing is lost: `<path>.damaged-YYYYMMDD-HHMMSS`
+// (local time), with -2, -3... if that name is taken.
+std::string AsidePath(const std::string& path);
+
 }  // namespace sas::kiosk

@@ -3,6 +3,7 @@
 
 #include <sys/stat.h>
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -11,7 +12,6 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "kiosk/atomic_file.h"
 
@@ -30,11 +30,16 @@ std::string Trim(const std::string& text) {
 
 std::uint64_t* Field(UsageCounters& counters, std::size_t index) {
   switch (index) {
-    case 0: return &counters.sessions;
-    case 1: return &counters.recordings;
-    case 2: return &counters.failed_recordings;
-    case 3: return &counters.voice_strokes;
-    default: return &counters.strokes_per_texture[index - kFixedFields];
+    case 0:
+      return &counters.sessions;
+    case 1:
+      return &counters.recordings;
+    case 2:
+      return &counters.failed_recordings;
+    case 3:
+      return &counters.voice_strokes;
+    default:
+      return &counters.strokes_per_texture[index - kFixedFields];
   }
 }
 
@@ -172,25 +177,11 @@ std::string BackupPath(const std::string& path) {
   return path + ".backup";
 }
 
-// `<path>.damaged-YYYYMMDD-HHMMSS`, with -2, -3... if that name is taken.
-std::string AsidePath(const std::string& path) {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
-  std::string aside = path + ".damaged-" + stamp;
-  struct stat info {};
-  for (int n = 2; stat(aside.c_str(), &info) == 0; ++n) {
-    aside = path + ".damaged-" + stamp + "-" + std::to_string(n);
-  }
-  return aside;
-}
-
 }  // namespace
 
 std::vector<std::string> CounterFieldNames(const std::vector<std::string>& texture_names) {
-  std::vector<std::string> fields = {"sessions", "recordings", "failed_recordings", "voice_strokes"};
+  std::vector<std::string> fields = {"sessions", "recordings", "failed_recordings",
+                                     "voice_strokes"};
   for (const auto& name : texture_names) fields.push_back(kStrokePrefix + name);
   return fields;
 }
@@ -271,6 +262,9 @@ bool LoadCounters(const std::string& path, const std::vector<std::string>& textu
 CountersRecovery RecoverCounters(const std::string& path,
                                  const std::vector<std::string>& texture_names) {
   CountersRecovery recovery;
+  // A kill in the middle of a save leaves a temporary next to the file or its backup.
+  RemoveStaleTemporaries(path);
+  RemoveStaleTemporaries(BackupPath(path));
   std::string text, why;
   const ReadResult main = ReadFile(path, &text, &why);
   CountersSalvage salvage = Empty(texture_names);

@@ -3,7 +3,8 @@
 // the staff panel. No single fault may lower them:
 //  - every save writes the file and then an identical `<file>.backup`, each with AtomicWriteFile,
 //    so a crash, a full disk or damage to one copy leaves the other whole;
-//  - the file is read with toml++ and, where that fails (truncation, binary junk, a bad value), line
+//  - the file is read with toml++ and, where that fails (truncation, binary junk, a bad value),
+//  line
 //    by line, salvaging every `key = count` that is intact; each count is the larger of what the
 //    file and the backup hold;
 //  - a damaged file is renamed aside with a timestamp (`<file>.damaged-YYYYMMDD-HHMMSS`) before the
@@ -22,8 +23,8 @@ std::string FormatCounters(const UsageCounters& counters,
 
 // What could be read from one counters text.
 struct CountersSalvage {
-  UsageCounters counters;          // zero where nothing was read
-  std::vector<bool> found;         // per field, in CounterFieldNames() order
+  UsageCounters counters;             // zero where nothing was read
+  std::vector<bool> found;            // per field, in CounterFieldNames() order
   std::vector<std::string> problems;  // "<source>:<line>: <what>", empty when the text is whole
 };
 
@@ -46,11 +47,12 @@ bool SaveCounters(const std::string& path, const UsageCounters& counters,
 bool LoadCounters(const std::string& path, const std::vector<std::string>& texture_names,
                   UsageCounters* counters, std::string* error);
 
-// The kiosk's start-up load (see the top of this file).
+// The kiosk's start-up load (see the top of this file); it first removes the temporaries a kill in
+// the middle of a save left next to the file or its backup.
 struct CountersRecovery {
   UsageCounters counters;
-  std::string report;     // empty when the file was whole or absent; else one journal line
-  bool may_save = true;   // false: a damaged file could not be moved aside, so must not be replaced
+  std::string report;    // empty when the file was whole or absent; else one journal line
+  bool may_save = true;  // false: a damaged file could not be moved aside, so must not be replaced
 };
 CountersRecovery RecoverCounters(const std::string& path,
                                  const std::vector<std::string>& texture_names);

@@ -202,7 +202,6 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   session.invitation_interval_s = options_.config.invitation_interval_s;
   session_ = Session(session);
   if (!options_.counters_path.empty()) {
-    RemoveStaleTemporaries(options_.counters_path);  // left by a kill in the middle of a save
     // Read under every texture's name, loaded or not: a texture left out today keeps its count.
     CountersRecovery recovery = RecoverCounters(options_.counters_path, counter_keys_);
     file_counters_ = recovery.counters;
@@ -361,28 +360,21 @@ void KioskEngine::LoadCues() {
         std::min({1.0, static_cast<double>(i) / ramp, static_cast<double>(n - i) / ramp});
     return 0.5 - 0.5 * std::cos(3.14159265358979 * k);
   };
-  {
-    const auto n = static_cast<std::size_t>(fs_hz);
-    std::vector<float> tone(n, 0.0f);
+  // A sine of `seconds` at `hz`, -12 dBFS, with the edges above.
+  const auto tone = [&](double seconds, double hz) {
+    const auto n = static_cast<std::size_t>(seconds * fs_hz);
+    std::vector<float> out(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-      tone[i] = static_cast<float>(
+      out[i] = static_cast<float>(
           0.25 * edge(i, n) *
-          std::sin(2.0 * 3.14159265358979 * 1000.0 * static_cast<double>(i) / fs_hz));
+          std::sin(2.0 * 3.14159265358979 * hz * static_cast<double>(i) / fs_hz));
     }
-    tone_clip_ = AddClip("test tone", std::move(tone), 0);
-  }
-  {
-    // The recording's tone: 0.25 s of 880 Hz at -12 dBFS with 10 ms edges, a clear "now" that
-    // the count leads up to (the same in every language).
-    const auto n = static_cast<std::size_t>(0.25 * fs_hz);
-    std::vector<float> beep(n, 0.0f);
-    for (std::size_t i = 0; i < n; ++i) {
-      beep[i] = static_cast<float>(
-          0.25 * edge(i, n) *
-          std::sin(2.0 * 3.14159265358979 * 880.0 * static_cast<double>(i) / fs_hz));
-    }
-    record_tone_clip_ = AddClip("record tone", std::move(beep), 0);
-  }
+    return out;
+  };
+  tone_clip_ = AddClip("test tone", tone(1.0, 1000.0), 0);
+  // The recording's tone: 0.25 s of 880 Hz, a clear "now" that the count leads up to (the same in
+  // every language).
+  record_tone_clip_ = AddClip("record tone", tone(0.25, 880.0), 0);
   {
     const auto n = static_cast<std::size_t>(2.0 * fs_hz);
     const double f0 = 40.0, f1 = 800.0, length_s = 2.0;

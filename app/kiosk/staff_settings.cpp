@@ -28,20 +28,6 @@ std::string Number(double value) {
   return text.find_first_of(".e") == std::string::npos ? text + ".0" : text;
 }
 
-std::string AsidePath(const std::string& path) {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
-  std::string aside = path + ".damaged-" + stamp;
-  struct stat info {};
-  for (int n = 2; stat(aside.c_str(), &info) == 0; ++n) {
-    aside = path + ".damaged-" + stamp + "-" + std::to_string(n);
-  }
-  return aside;
-}
-
 }  // namespace
 
 double StepStaffDb(double value_db, int steps) {

@@ -125,6 +125,8 @@ VisitorStroke MakeStroke(const char* name, double x0, double y0, double angle_de
 // `duration_scale` shortens every stroke (a quick run of the same population).
 std::vector<VisitorStroke> VisitorPopulation(int count, std::uint32_t seed,
                                              double duration_scale = 1.0);
+// The p-quantile (0..1) of `values`, linear between neighbours (for the population's figures).
+double Percentile(std::vector<double> values, double p);
 
 struct LevelMeasurement {
   double global_sound_gain_db = 0.0;  // on top of the texture's gains

@@ -64,15 +64,6 @@ double CpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = p * static_cast<double>(v.size() - 1);
-  const auto i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
-
 struct Texture {
   std::string name;
   surface::LoadedTexture loaded;
@@ -270,8 +261,8 @@ int main(int argc, char** argv) {
   std::vector<Texture> textures;
   for (const std::string& key : kiosk::KioskTextureNames()) {
     Texture t;
-    t.loaded = surface::LoadTexture(
-        (std::filesystem::path(opt.textures) / key / "texture.toml").string());
+    t.loaded =
+        surface::LoadTexture((std::filesystem::path(opt.textures) / key / "texture.toml").string());
     t.name = t.loaded.file.name;
     t.material = kiosk::FindMaterial(t.loaded.file.material, dirs).params;
     t.output = kiosk::KioskOutputParams(config, t.loaded.file.gains);
@@ -331,10 +322,10 @@ int main(int argc, char** argv) {
         all_mix[n] += c;
       }
     }
-    s.median = Percentile(costs, 0.5);
-    s.p95 = Percentile(costs, 0.95);
+    s.median = sas::kiosk::Percentile(costs, 0.5);
+    s.p95 = sas::kiosk::Percentile(costs, 0.95);
     s.worst = worst;
-    s.tail_median = Percentile(tails, 0.5);
+    s.tail_median = sas::kiosk::Percentile(tails, 0.5);
     s.contact = static_cast<double>(contact) / static_cast<double>(down);
     s.felt = static_cast<double>(felt) / static_cast<double>(down);
     s.idle = static_cast<double>(idle) / static_cast<double>(tail);
@@ -354,22 +345,22 @@ int main(int argc, char** argv) {
     std::printf("  sub-steps (share of pen-down samples; ×0 = probe parked): %s\n", s.mix.c_str());
     for (const auto& [style, v] : s.by_style) {
       std::printf("  %-6s median %.3f %%  p95 %.3f %%  worst %.3f %%\n", style.c_str(),
-                  Percentile(v, 0.5), Percentile(v, 0.95), *std::max_element(v.begin(), v.end()));
+                  sas::kiosk::Percentile(v, 0.5), sas::kiosk::Percentile(v, 0.95),
+                  *std::max_element(v.begin(), v.end()));
     }
     std::fflush(stdout);
     summaries.push_back(s);
   }
-  const double p95 = Percentile(all_costs, 0.95);
+  const double p95 = sas::kiosk::Percentile(all_costs, 0.95);
   const double worst = *std::max_element(all_costs.begin(), all_costs.end());
-  const double median = Percentile(all_costs, 0.5);
+  const double median = sas::kiosk::Percentile(all_costs, 0.5);
   const bool p95_ok = p95 <= 1.0, worst_ok = worst <= 2.0;
 
   std::ostringstream md;
   char line[640];
   md << "# Synth cost over visitor strokes\n\n"
         "Written by `visitor_bench"
-     << (opt.quick ? " --quick" : "")
-     << "` (tests/bench/visitor_bench.cpp); do not edit. "
+     << (opt.quick ? " --quick" : "") << "` (tests/bench/visitor_bench.cpp); do not edit. "
      << opt.strokes << " strokes from seed " << opt.seed
      << " (kiosk/texture_levels.h VisitorPopulation, the population of `population_levels`: "
         "scrape / rub / roll, 20–400 mm/s, pressure 0.1–0.9, 0.3–1.5 s, random places and "
@@ -388,11 +379,11 @@ int main(int argc, char** argv) {
         "| texture (material) | median % | p95 % | worst % (stroke) | contact | felt | sub-steps "
         "| ring-out median % | ring-out idle |\n|---|---:|---:|---|---:|---:|---|---:|---:|\n";
   for (const Summary& s : summaries) {
-    std::snprintf(line, sizeof line,
-                  "| %s (%s) | %.3f | %.3f | %.3f (%s) | %.1f %% | %.1f %% | %s | %.3f | %.1f %% |\n",
-                  s.name.c_str(), s.material.c_str(), s.median, s.p95, s.worst,
-                  s.worst_stroke.c_str(), 100.0 * s.contact, 100.0 * s.felt, s.mix.c_str(),
-                  s.tail_median, 100.0 * s.idle);
+    std::snprintf(
+        line, sizeof line,
+        "| %s (%s) | %.3f | %.3f | %.3f (%s) | %.1f %% | %.1f %% | %s | %.3f | %.1f %% |\n",
+        s.name.c_str(), s.material.c_str(), s.median, s.p95, s.worst, s.worst_stroke.c_str(),
+        100.0 * s.contact, 100.0 * s.felt, s.mix.c_str(), s.tail_median, 100.0 * s.idle);
     md << line;
   }
   std::snprintf(

@@ -121,3 +121,20 @@ TEST_CASE("atomic write replaces the whole file and reports an unwritable direct
   CHECK_FALSE(sas::kiosk::AtomicWriteFile(dir.file("missing-dir/f.txt"), "x", &error));
   CHECK_THAT(error, Catch::Contains("missing-dir"));
 }
+
+TEST_CASE(
+    "the start-up load removes the temporaries a kill left next to the counters or the backup",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.file("counters.toml");
+  std::string error;
+  REQUIRE(sas::kiosk::SaveCounters(path, Sample(), kNames, &error));
+  const auto main_temp = dir.Write(".counters.toml.a1B2c3", "sessions = 1\n");
+  const auto backup_temp = dir.Write(".counters.toml.backup.Zz9yX8", "sessions = 1\n");
+  const auto unrelated = dir.Write(".counters.toml.notes", "keep me\n");
+  const auto recovery = sas::kiosk::RecoverCounters(path, kNames);
+  CHECK(recovery.counters == Sample());
+  CHECK_FALSE(std::ifstream(main_temp).good());
+  CHECK_FALSE(std::ifstream(backup_temp).good());
+  CHECK(ReadAll(unrelated) == "keep me\n");  // not mkstemp's six-character suffix
+}
