@@ -217,12 +217,17 @@ struct Scene::Impl {
     } else if (gesture.style == ProbeStyle::kRoll) {
       const double radius = std::max(material.probe.ball_radius_m, 0.5e-3 * gesture.width_mm);
       length = 2.0 * std::sqrt(4.0 * radius * r.rms_m);
-    } else if (config.impact.enabled && gesture.normal_force_n > 0.0) {
-      const double x =
-          std::pow(gesture.normal_force_n / config.impact.k, 1.0 / config.impact.alpha);
-      length = 2.0 * std::sqrt(material.probe.ball_radius_m * x);
+    } else {
+      length = HertzPatch(length);
     }
     return std::max(length, 1e-7);
+  }
+
+  // The nib's Hertz contact diameter under the push, or `otherwise` with no impact model or push.
+  double HertzPatch(double otherwise) const {
+    if (!config.impact.enabled || !(gesture.normal_force_n > 0.0)) return otherwise;
+    const double x = std::pow(gesture.normal_force_n / config.impact.k, 1.0 / config.impact.alpha);
+    return 2.0 * std::sqrt(material.probe.ball_radius_m * x);
   }
 
   // Coefficients of the spatial processes for the current gesture: an Ornstein–Uhlenbeck step over
@@ -245,9 +250,19 @@ struct Scene::Impl {
     }
     const double keep = std::exp(-ds / r.length_m);
     const double in = std::sqrt(std::max(1.0 - keep * keep, 0.0));
-    rough_keep = noise_keep = keep;
+    rough_keep = keep;
     rough_in = std::max(r.rms_m, 0.0) * in;
-    noise_in = in;
+    // The friction's own noise. An upright point ploughs through the asperities one by one, so
+    // its force renews every correlation length; a tilted nib slides on its side, where the
+    // friction is the adhesion of all the junctions in its Hertz patch, a population that renews
+    // only once the patch has moved its own length (ploughing and adhesion terms of friction:
+    // Bowden & Tabor, "The Friction and Lubrication of Solids", 1950, ch. V). So a rub's noise is
+    // darker than a scrape's on the same surface, as a pencil's side sounds duller than its point.
+    const double noise_length = gesture.style == ProbeStyle::kRub
+                                    ? std::max(r.length_m, HertzPatch(r.length_m))
+                                    : r.length_m;
+    noise_keep = std::exp(-ds / noise_length);
+    noise_in = std::sqrt(std::max(1.0 - noise_keep * noise_keep, 0.0));
     contact_step = 1.0 - std::exp(-ds / ContactLength());
   }
 
