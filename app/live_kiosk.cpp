@@ -153,9 +153,10 @@ class StaffPanel {
         return;
       }
       // A long status (a rejected configuration's file:line: key: what) wraps rather than losing
-      // its end, where the reason is; continuation lines are indented.
+      // its end, where the reason is; continuation lines are indented, so every row is wrapped
+      // to the indented width (none runs past the panel's edge).
       bool first = true;
-      for (const auto& row : text.Wrap(content, size_px, panel.w - 32 - (first ? 0 : 24))) {
+      for (const auto& row : text.Wrap(content, size_px, panel.w - 32 - 24)) {
         if (y + line_h > bottom) return;
         if (auto mask = text.Render(row, size_px)) {
           overlays_.push_back(
