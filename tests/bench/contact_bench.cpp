@@ -1382,7 +1382,7 @@ int main(int argc, char** argv) {
         "1e-12 — is "
      << Sci(scene_floor) << " (waveform " << Sci(scene_floor_waveform)
      << "): scheme differences below it are not resolved by this case. Energy: largest "
-        "e_sim/e_exact − 1 over all impacts (DESIGN.md §4 counts e > e_exact·(1 + 1e-6) as "
+        "e_sim/e_exact − 1 over all impacts (e > e_exact·(1 + 1e-6) counts as "
         "energy gained).\n\n";
   md << "| scheme | ×os | impact k=1e6 | k=1e8 | k=1e10 | k=1e12 | energy | impact ns/sample | "
         "friction error | friction ns/sample | scene error | scene ns/sample |\n";

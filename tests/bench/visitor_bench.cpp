@@ -19,7 +19,7 @@
 //
 // Reports per texture: median, 95th percentile and worst stroke cost, the shares above, and the
 // same over all strokes; exits 1 if a texture's strokes never feel its profile (the benchmark
-// would not measure what visitors do). Targets (DESIGN.md §4): p95 <= 1 %, worst <= 2 % of one
+// would not measure what visitors do). Targets: p95 <= 1 %, worst <= 2 % of one
 // core. Writes docs/visitor-bench.md (--docs DIR).
 //
 // Usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR] [--quick]
@@ -389,7 +389,7 @@ int main(int argc, char** argv) {
   std::snprintf(
       line, sizeof line,
       "| all | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %s | | %.1f %% |\n\n"
-      "Targets (DESIGN.md §4): 95th-percentile stroke ≤ 1 %% of one core: **%s** (%.3f %%); worst "
+      "Targets: 95th-percentile stroke ≤ 1 %% of one core: **%s** (%.3f %%); worst "
       "≤ 2 %%: **%s** (%.3f %%).\n",
       median, p95, worst, 100.0 * static_cast<double>(all_contact) / static_cast<double>(all_down),
       100.0 * static_cast<double>(all_felt) / static_cast<double>(all_down),
