@@ -1,5 +1,5 @@
 #pragma once
-// The headless default (issue 7): on a machine with no display, `sketch-a-scratch` runs a
+// The headless default: on a machine with no display, `sketch-a-scratch` runs a
 // scripted visit through the same KioskEngine and VisitView the kiosk uses, with the platform's
 // offline audio loop in place of the sound card and a virtual clock in place of real time:
 //   each of the four textures chosen by a token, then stroked once in each style (scrape: pen

@@ -1,5 +1,5 @@
 #pragma once
-// The live kiosk (issue 7): the full-screen SDL window, the pen (libinput, else SDL mouse/touch),
+// The live kiosk: the full-screen SDL window, the pen (libinput, else SDL mouse/touch),
 // the token switches and record button, the microphone and the speaker/transducer, all wired to
 // one KioskEngine, plus the staff panel, the watchdog and the device status board.
 //

@@ -64,7 +64,7 @@ class VisitView {
   // Lines centred on (centre_x, centre_y) over one dark plate; returns the plate.
   ui::PixelRect AddPlate(ui::Overlays& overlays, const std::vector<PlateLine>& lines, int centre_x,
                          int centre_y);
-  // Bubble wrap: the picture with the popped bubbles flattened (issue 5, paper §5.2.2).
+  // Bubble wrap: the picture with the popped bubbles flattened (paper §5.2.2).
   void SyncBubbles(double now_s);
   std::shared_ptr<const ui::ImageRgba> PoppedPicture() const;
 

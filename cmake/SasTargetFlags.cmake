@@ -1,4 +1,5 @@
-# Per-target flags (DESIGN.md §5.10): never global. Every target of ours calls sas_target_flags().
+# Per-target flags, never global (a dependency's code must not be built with our warnings).
+# Every target of ours calls sas_target_flags().
 function(sas_target_flags target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow -Wconversion -Werror)
   # GCC 12 at -O3 (the Release configuration) inlines std::string's insert-at-front from

@@ -1,5 +1,5 @@
 #pragma once
-// Ambient-adaptive sound gain (issue 7, noisy room; optional, gains.ambient_adaptive): while the
+// Ambient-adaptive sound gain (for a noisy room; optional, gains.ambient_adaptive): while the
 // kiosk is idle nobody is scratching or speaking, so the microphone hears the room. Its level
 // moves an extra speaker gain so the exhibit stays audible over a busy gallery and does not blare
 // into an empty one:

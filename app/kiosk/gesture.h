@@ -11,7 +11,7 @@
 // field's origin is its top-left sample), pressure 0..1 (0 = pen up), tilt in degrees from upright
 // (0..90). Between rows everything is interpolated linearly; after the last row the pen is lifted.
 //
-// Mapping (paper §4; DESIGN.md §3): velocity = distance between successive rows / their time
+// Mapping (paper §4): velocity = distance between successive rows / their time
 // difference (constant along a segment: the paper's Δx = v Δt), direction = the segment's unit
 // vector; normal force = pressure · max_force_n (default 0..2 N); penetration = pressure ·
 // max_penetration_m (light touch feels only the peaks, full pressure the whole relief); width

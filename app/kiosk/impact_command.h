@@ -2,7 +2,7 @@
 // `sketch-a-scratch impact`: the measuring command for people calibrating materials. It drops a
 // probe of mass M on a rigid, immovable body through the engine's own contact code path
 // (synth::SimulateRigidWallImpact, the same per-sample kernel Scene::Process runs) and prints, as
-// JSON, what the engine did next to what the closed forms say (reference/hunt-crossley.md):
+// JSON, what the engine did next to what the closed forms say (hunt_crossley_closed_form.h):
 // exit velocity, restitution, max compression, contact time, samples per contact, and the
 // relative errors.
 //

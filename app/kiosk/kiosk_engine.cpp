@@ -138,7 +138,7 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   load.pixel_pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
   // Each texture loads on its own thread (as surface::LoadTextures does) but fails on its own: a
   // corrupt picture, texture.toml or material file leaves that texture out and the kiosk comes up
-  // with the others (issue 8), saying which one failed and why.
+  // with the others, saying which one failed and why.
   std::vector<std::future<surface::LoadedTexture>> pending;
   for (const auto& path : options_.texture_paths) {
     pending.push_back(std::async(std::launch::async,

@@ -2,7 +2,7 @@
 // The kiosk engine: everything a visit needs between the input devices and the output devices,
 // shared by the live kiosk (app/live_kiosk.cpp: SDL window, PortAudio, pen, switches) and the
 // headless default (app/headless_demo.cpp: a scripted visit through the offline audio loop), so
-// the two never wire things twice (issue 7).
+// the two never wire things twice.
 //
 // Control thread (OnPen, OnToken, OnRecordButton, OnStaffChord, Tick):
 //   pen sample (screen px, pressure, tilt, CLOCK_MONOTONIC time) -> surface metres (the picture

@@ -108,7 +108,7 @@ Setter<synth::FrictionParams> Bristle() {
 }
 
 // Ranges: wide enough for any physical material, narrow enough to keep the synth's numerics in
-// the domain DESIGN.md §4 holds it to (k <= 1e12, 1 <= α <= 4, probe 0.1 g .. 1 kg).
+// the domain the contact schemes are held to (k <= 1e12, 1 <= α <= 4, probe 0.1 g .. 1 kg).
 const std::vector<KeySpec<synth::ProbeParams>>& ProbeKeys() {
   using P = synth::ProbeParams;
   static const std::vector<KeySpec<P>> keys = {

@@ -1,7 +1,7 @@
 #pragma once
 // Materials as data: one TOML file per material (textures/materials/<name>.toml) holding the
 // resonator's modes, the Hunt–Crossley impact, the elasto-plastic friction and the probe, with
-// units in the key names and a one-line description (issue 3; format in
+// units in the key names and a one-line description (format in
 // textures/materials/README.md). Loading fills a synth::MaterialParams at set-up time, never on
 // the audio thread.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The synth's output settings for the texture under the pen (issue 7, noisy room): the kiosk
+// The synth's output settings for the texture under the pen (for a noisy room): the kiosk
 // configuration's gains (deliberately high for a loud room), plus the texture's calibrated
 // loudness-matching gains (texture.toml [gains], kiosk/texture_levels.h), plus the ambient-adaptive
 // sound gain (ambient_gain.h; 0 dB when off), all in dB; the transducer's peak ceiling and the

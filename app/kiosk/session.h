@@ -1,12 +1,12 @@
 #pragma once
-// The kiosk's Session state machine (DESIGN.md §1: app/kiosk, control thread). It owns what a
+// The kiosk's Session state machine (app/kiosk, control thread). It owns what a
 // visitor experiences over time — which surface is under the pen, the voice-recording flow,
 // the idle reset with its attract screen, the staff panel — and nothing about devices: inputs are
 // plain calls with a monotonic time in seconds, outputs are Actions the wiring carries out (play
 // a cue, start the recorder, cross-fade, un-pop the bubbles...). Pure logic, so every rule below
 // is tested without hardware.
 //
-// Rules (issue 7; paper §5.2 for what visitors did):
+// Rules (paper §5.2 for what visitors did):
 // - Tokens choose one of the textures; switching cross-fades and speaks the texture's name.
 // - Record button: a press starts a countdown — "speak after the tone", then the count spoken
 //   (three, two, one, a second apart, or closer when the countdown is short) and the tone —

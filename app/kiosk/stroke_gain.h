@@ -1,5 +1,5 @@
 #pragma once
-// Per-stroke loudness matching of the kiosk textures (issue 7, noisy room): the same stroke should
+// Per-stroke loudness matching of the kiosk textures (for a noisy room): the same stroke should
 // sound equally loud and vibrate equally strongly on any of the four textures (within 1 dB), so
 // that switching tokens never jumps in level. One gain pair per texture ([gains] in texture.toml,
 // kiosk/texture_levels.h) matches the textures on average only: their levels grow with stroke

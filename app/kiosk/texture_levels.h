@@ -1,5 +1,5 @@
 #pragma once
-// Loudness and vibration-strength matching of the kiosk textures (issue 7, "noisy room"): the
+// Loudness and vibration-strength matching of the kiosk textures (for a noisy room): the
 // same stroke on any of the four textures should sound equally loud and vibrate equally strongly
 // (within 1 dB), so that switching tokens never jumps in level. A texture's [gains] and [levels]
 // in its texture.toml are what the kiosk corrects with (stroke_gain.h); this file measures and

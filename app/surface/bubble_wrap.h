@@ -1,5 +1,5 @@
 #pragma once
-// Bubble wrap is the one stateful texture (issue 5, paper §5.2.1): bubbles sit on a hexagonal grid
+// Bubble wrap is the one stateful texture (paper §5.2.1): bubbles sit on a hexagonal grid
 // (the layout is in the texture file, the generator draws the same grid); pressing an intact bubble
 // with a normal force at or above pop_force_n pops it. A pop returns a PopEvent (the kiosk turns it
 // into a short burst through the contact model) and the bubble is flattened in the height field

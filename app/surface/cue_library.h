@@ -1,5 +1,5 @@
 #pragma once
-// The kiosk's spoken cues (issue 7: for visitors who cannot see the screen), loaded into RAM once
+// The kiosk's spoken cues (for visitors who cannot see the screen), loaded into RAM once
 // at start so playing one never touches the disk. The files are made at build time by
 // textures/cue_maker (espeak-ng speech, 48 kHz mono, loudness-normalised) into <build>/textures/
 // cues/<language>/ and installed to share/sketch-a-scratch/cues/<language>/:

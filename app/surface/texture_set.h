@@ -2,8 +2,8 @@
 // Loading the kiosk's textures at start-up: each texture file (texture_file.h), its picture turned
 // into a height field (image_surface.h, the paper's gray-level-change relief at the texture's
 // relief_mm) and, for bubble wrap, its bubble state (bubble_wrap.h). Textures load in parallel,
-// one task each, so four 1080p textures are ready well inside the boot budget (DESIGN.md §4:
-// boot to first interactive frame ≤ 2 s). Set-up only: errors are LoadErrors naming the file.
+// one task each, so four 1080p textures are ready well inside the boot budget (boot to
+// first interactive frame ≤ 2 s). Set-up only: errors are LoadErrors naming the file.
 
 #include <memory>
 #include <optional>

@@ -2,8 +2,8 @@
 // The per-sample contact kernel: probe (point mass, vertical) + contact (Hunt–Crossley and
 // friction, contact.h) + modal resonator (exact maps, modal_resonator.h) advanced by one output
 // sample. Scene::Process and SimulateRigidWallImpact both run exactly this function, so the
-// calibration command measures the code that makes the sound (DESIGN.md §5.1: never write the
-// maths twice).
+// calibration command measures the code that makes the sound (never write the
+// maths twice: a second copy could drift from the one that is heard).
 //
 // Geometry (vertical, up = positive): the surface under the probe sits at s(t) + Σ q_i (felt
 // profile plus the resonator's contact displacement); the probe at y. Compression

@@ -1,7 +1,9 @@
 #pragma once
 // Closed-form results for a point mass m hitting a rigid wall through a Hunt–Crossley contact
 // f = -k x^α - λ x^α ẋ (x > 0). Used as test oracles and by the `impact` calibration command.
-// Source: ../shared/reference/hunt-crossley.md; phase-plane trajectory from Avanzini & Rocchesso,
+// Sources: Hunt & Crossley, "Coefficient of restitution interpreted as damping in vibroimpact",
+// J. Appl. Mech. 42(2), 1975; closed forms via the Lambert W function as in Papetti, Avanzini &
+// Rocchesso, IEEE TASLP 19(7), 2011; phase-plane trajectory from Avanzini & Rocchesso,
 // "Modeling collision sounds: non-linear contact force", DAFx 2001. μ = λ / k.
 
 namespace sas::synth {

@@ -1,11 +1,12 @@
 #pragma once
 // Plain parameter structs for one material (the resonating surface) and the probe touching it,
 // filled by the control side (material files, texture files, configuration) and handed to the
-// synth by const&. SI units throughout unless a name says otherwise (DESIGN.md §3, §5.3).
+// synth by const&. SI units throughout unless a name says otherwise.
 //
 // Sources: Hunt–Crossley impact and modal resonator as in the paper §4 and the Sound Design
-// Toolkit; elasto-plastic friction after Dupont et al. 2002 / Avanzini et al. 2005
-// (../shared/reference/friction.md).
+// Toolkit; elasto-plastic friction after Dupont, Hayward, Armstrong & Altpeter, "Single state
+// elastoplastic friction models", IEEE TAC 47(5), 2002, used for sound by Avanzini, Serafin &
+// Rocchesso, IEEE TSAP 13(5), 2005.
 
 #include <array>
 #include <cstdint>
@@ -28,7 +29,7 @@ struct ResonatorParams {
   std::array<ModeParams, kMaxModes> modes{};
 };
 
-// Numerical scheme for the probe/contact ODE (issue 4 measures them; DESIGN.md §3). All four
+// Numerical scheme for the probe/contact ODE (contact_bench measures them). All four
 // share the exact mode/probe maps and differ only in the contact force held over a sub-step; see
 // synth/contact.h for each method and its source.
 enum class ContactScheme : std::uint8_t {

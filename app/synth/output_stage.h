@@ -1,5 +1,5 @@
 #pragma once
-// Output stage (DESIGN.md §1): channel 1 drives the speaker, channel 2 the vibrotactile
+// Output stage: channel 1 drives the speaker, channel 2 the vibrotactile
 // transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
 // the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
 //   ch 1: NaN/Inf -> 0, × sound_gain × stroke sound gain, soft limiter

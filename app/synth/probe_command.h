@@ -1,6 +1,6 @@
 #pragma once
 // What the control side tells the audio thread about the stylus, once per input event. Small POD
-// so it crosses the SPSC queue by copy (DESIGN.md §5.4). The scene splits its block at
+// so it crosses the SPSC queue by copy. The scene splits its block at
 // `frame_offset` so the command takes effect on the exact sample it belongs to.
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // The synth's top level: one probe (the stylus tip) touching one resonating material over a
-// surface profile, rendered to two channels. Chain per sample (DESIGN.md §1, paper §4):
+// surface profile, rendered to two channels. Chain per sample (paper §4):
 //   ProbeCommand -> SurfaceReader (profile under the probe: width window, penetration threshold,
 //   scrape | rub | roll) -> contact (Hunt–Crossley normal force + elasto-plastic friction, solved
 //   together with the probe mass and the resonator) -> ModalResonator (exact per-mode update)
@@ -8,7 +8,7 @@
 // Process() loops one inline per-sample kernel; the block is split at the commands' frame
 // offsets, so rendering in any block size gives bit-identical output. Process() allocates nothing,
 // takes no lock, throws nothing, does no I/O, and runs with denormals flushed (FTZ/DAZ).
-// Work that cannot change the output is skipped (issue 4, SceneSkips below); each skip has a
+// Work that cannot change the output is skipped (SceneSkips below); each skip has a
 // test comparing it with the full computation (tests/synth/test_skips.cpp).
 
 #include <cstdint>
@@ -59,7 +59,7 @@ struct SceneSkips {
 };
 
 // Pickup amplitude (full scale = 1) below which the pen-up scene counts as silent: -140 dBFS, so
-// zeroing it changes no output sample by more than 1e-7 (issue 4 asks for -120 dBFS or lower).
+// zeroing it changes no output sample by more than 1e-7 (the target is -120 dBFS or lower).
 inline constexpr double kIdleSilence = 1e-7;
 inline constexpr int kIdleCheckFrames = 32;
 

@@ -1,6 +1,6 @@
 #pragma once
 // Flat overlay shapes drawn over the texture: the recording countdown bar, the live level meter,
-// the recording dot and the staff panel's frame (issue 7). A shape is a rectangle filled with a
+// the recording dot and the staff panel's frame. A shape is a rectangle filled with a
 // colour whose alpha is its coverage; the window draws them with SDL's blended fill and the
 // software compositor with FillRectBlend, so both give the same pixels. Text comes later.
 

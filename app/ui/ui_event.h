@@ -2,7 +2,7 @@
 // What the kiosk window reports to the wiring each time it is polled: stylus events (already in
 // screen pixels with pressure), the keyboard stand-ins for the token switches and the record
 // button (keys 1-4, 0 and R), the staff chord, and display changes. Quit requests, Alt-F4,
-// Escape and window-close never appear here: a visitor has no way out (issue 7).
+// Escape and window-close never appear here: a visitor has no way out.
 
 #include <cstdint>
 
