@@ -1,5 +1,5 @@
 #pragma once
-// The audio device behind one small interface (DESIGN.md §5.5): two implementations run the same
+// The audio device behind one small interface: two implementations run the same
 // callback core — PortAudio (the product; ALSA host API on Debian 12) and an offline loop that
 // renders into a buffer (tests, headless mode, benchmarks).
 //

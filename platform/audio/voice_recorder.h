@@ -48,7 +48,7 @@ class VoiceRecorder {
   // The take recorded so far and its levels (call after Stop or when Recording() went false).
   VoiceTake Take() const;
   // Stops and overwrites the whole buffer with zeros: a visitor's voice leaves no trace in RAM
-  // once the kiosk has turned it into a surface or the idle reset wiped it (issue 7).
+  // once the kiosk has turned it into a surface or the idle reset wiped it (no voice is kept).
   void Wipe();
   // The UI's level meter, linear 0..1.
   float Level() const { return level_.load(std::memory_order_relaxed); }

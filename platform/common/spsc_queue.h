@@ -1,6 +1,6 @@
 #pragma once
-// Single-producer single-consumer lock-free ring of small trivially-copyable messages (DESIGN.md
-// §5.4): the pen thread -> control thread, switch threads -> control thread, and later the UI ->
+// Single-producer single-consumer lock-free ring of small trivially-copyable messages:
+// the pen thread -> control thread, switch threads -> control thread, and later the UI ->
 // audio ProbeCommands. Fixed capacity (a power of two) chosen at compile time: no allocation, no
 // locks, wait-free on both sides. The classic Lamport ring with acquire/release indices; each side
 // caches the other's index to avoid touching the shared cache line on every call (the idea behind

@@ -1,8 +1,8 @@
 #pragma once
 // Token switches on a Microchip MCP2221A USB-HID adapter (GP0-GP3), for kiosk PCs without a GPIO
-// header. Protocol from the MCP2221A datasheet (DS20005565), as summarised in
-// ../shared/reference/platform.md: 64-byte reports with no report ID (hidapi writes 65 bytes,
-// byte 0 = 0); the response echoes the command in byte 0 and a status in byte 1 (0 = ok).
+// header. Protocol from the MCP2221A datasheet (DS20005565): 64-byte reports with no report ID
+// (hidapi writes 65 bytes, byte 0 = 0); the response echoes the command in byte 0 and a status in
+// byte 1 (0 = ok).
 //  - 0x60 SET SRAM SETTINGS: byte 7 = alter-GP-designation flag, bytes 8..11 = GP0..3 setting
 //    (bits 2:0 designation, 0 = GPIO; bit 3 direction, 1 = input). SRAM is lost at power-up, so
 //    it is sent at every (re)connect.

@@ -1,6 +1,6 @@
 #pragma once
 // Software debounce on event timestamps, one state machine per input (libgpiod's v1 kernel API
-// has no debounce and conductive-ink token contacts chatter; ../shared/reference/platform.md).
+// has no debounce and conductive-ink token contacts chatter).
 // A change is accepted once the input has stayed at the new level for `debounce_ns` since its last
 // edge; the emitted event carries the time of the first edge of the burst (closest to the real
 // contact time). Bursts that return to the old level before the quiet period emit nothing.

@@ -1,5 +1,5 @@
 #pragma once
-// The token switches and the record button as timestamped events (DESIGN.md §1): whichever
+// The token switches and the record button as timestamped events: whichever
 // backend reads them (libgpiod lines, MCP2221A pins, keys 1-4 and R), the control thread sees the
 // same small POD through an SPSC queue.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Which texture the tokens select (issue 6): exactly one token on a switch -> its texture; none ->
+// Which texture the tokens select: exactly one token on a switch -> its texture; none ->
 // the default texture; several -> the one placed last (when it is lifted, the most recently placed
 // of those still on their switches). Control-thread logic fed by SwitchEvents.
 
