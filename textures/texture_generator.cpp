@@ -626,7 +626,7 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
          << note << text << levels << t.toml_tail;
     if (!toml) throw std::runtime_error("cannot write texture.toml into " + folder.string());
   };
-  // Loudness matching (issue 7): the texture file first goes out with 0 dB gains and no [levels]
+  // Loudness matching: the texture file first goes out with 0 dB gains and no [levels]
   // so the kiosk engine can play the calibration strokes on exactly what the kiosk loads
   // (material, picture as written); then the measured gains and stroke levels are written.
   write_toml({}, "", "");
