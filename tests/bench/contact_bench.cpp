@@ -1,4 +1,4 @@
-// Contact benchmark (issue 4): run time against error for every contact scheme × contact
+// Contact benchmark: run time against error for every contact scheme × contact
 // oversampling × case, the full kiosk scene's cost, the idle scene's cost, a denormal ring-down
 // check, and (--stress N) the long randomised stress test.
 //
@@ -72,7 +72,7 @@ constexpr std::array<synth::ContactScheme, 4> kAllSchemes = {
 struct Options {
   std::string out_dir = SAS_BENCH_RESULTS_DIR;
   bool quick = false;
-  bool scene_only = false;  // --scene-only: just the acceptance-2 cost figures (profiling)
+  bool scene_only = false;  // --scene-only: just the scene cost figures (profiling)
   bool front_only = false;  // --front: just the comparison with the explicit reference
   int reps = 3;
   long stress = 0;
@@ -1099,7 +1099,7 @@ int main(int argc, char** argv) {
 
   // Impact.
   std::map<synth::ContactScheme, double> log_error_at_64;
-  if (opt.scene_only) schemes.clear();  // skip the sweeps: only the acceptance-2 figures
+  if (opt.scene_only) schemes.clear();  // skip the sweeps: only the scene cost figures
   for (auto scheme : schemes) {
     for (int os : oversamples) {
       for (double k : {1e6, 1e8, 1e10, 1e12}) {
@@ -1234,7 +1234,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
 
-  // Acceptance 2: the kiosk scene as configured (material's scheme, automatic oversampling) and
+  // The kiosk scene's cost as configured (material's scheme, automatic oversampling) and
   // the idle scene, measured in the same run. A run is short (the 2.1 s stroke takes ~50 ms), so
   // these take the best of more repetitions: the build machine is shared, and the best run is
   // the one least disturbed by other work.

@@ -1,4 +1,4 @@
-// Surface benchmark (issue 5): loads the four kiosk textures (texture file, picture, true height
+// Surface benchmark: loads the four kiosk textures (texture file, picture, true height
 // map), derives each picture's height field, and prints the wall time of load + derive for all
 // four (target < 1 s together), then the accuracy of each derived field against its true map
 // (ridge recall/precision within 2 px, flat share below penetration, correlations).

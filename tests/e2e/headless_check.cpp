@@ -1,4 +1,4 @@
-// Checks what the headless default wrote (issue 7, acceptance 4), independently of the code that
+// Checks what the headless default wrote, independently of the code that
 // wrote it: every texture stroked in every style has a WAV and a PNG; each WAV is clearly audible
 // while the pen is down and has decayed to near silence at its end; each snapshot differs from the
 // plain picture around the stroke's end point (the dent) and matches it far from it; the voice

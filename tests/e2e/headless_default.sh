@@ -1,5 +1,5 @@
 #!/bin/bash
-# Acceptance 4 of issue 7: on a machine with no display, `sketch-a-scratch` with no command runs
+# On a machine with no display, `sketch-a-scratch` with no command runs
 # the headless visit in under a minute and exits 0; headless_check then checks every output.
 # usage: headless_default.sh <sketch-a-scratch> <headless_check> [max seconds [extra options]]
 set -u

@@ -11,7 +11,7 @@
 //   find SPEECH.f32 FILE...      exit 1 when any FILE contains a stretch of the speech samples
 //
 // pace: real-time pacing for ALSA's file plugin. The plugin neither plays
-// nor captures in real time (reference/platform.md: 0.5 s "plays" in ~1 ms), so the test points
+// nor captures in real time (measured: 0.5 s "plays" in ~1 ms), so the test points
 // its `file` and `infile` at two FIFOs and this program sits on the other ends:
 //   playback: reads the kiosk's float32 stereo stream from <out_fifo> at 48 kHz real time and
 //             appends it to <out.raw> (so the file's size tells the test which sample is playing);

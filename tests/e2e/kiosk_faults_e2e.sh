@@ -1,5 +1,5 @@
 #!/bin/bash
-# Fault injection (issue 8, reliability a and acceptance 3/4), one scripted run:
+# Fault injection, one scripted run:
 #  1. in process: kiosk_fault_run drives the kiosk's control loop and engine through the platform
 #     fakes (corrupt configuration, picture and material at start, GPIO chip missing, audio device
 #     lost and back, tablet unplugged and back, token board unplugged and back, disk full while

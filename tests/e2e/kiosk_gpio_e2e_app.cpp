@@ -1,5 +1,5 @@
-// The live kiosk with fake GPIO token switches, for the end-to-end test under Xvfb (issue 7,
-// acceptance 1). A test driver, not the product: sketch-a-scratch never contains this fake.
+// The live kiosk with fake GPIO token switches, for the end-to-end test under Xvfb.
+// A test driver, not the product: sketch-a-scratch never contains this fake.
 // It runs sas::app::RunKiosk, the same code as `sketch-a-scratch --kiosk` (SDL window, PortAudio,
 // pen, staff panel, KioskControl, backend choice, the GPIO switch thread with its edge ordering,
 // active-low and debounce, the token rule), with one thing replaced through KioskBackends: the

@@ -1,5 +1,5 @@
 #!/bin/bash
-# End-to-end check of the live kiosk (issue 7, acceptance 1-3) on Xvfb (no window manager):
+# End-to-end check of the live kiosk on Xvfb (no window manager):
 # kiosk_gpio_e2e_app runs the code of `sketch-a-scratch --kiosk` (sas::app::RunKiosk) with the
 # GPIO token switches' event source reading "line <offset> falling|rising" from a FIFO this script
 # writes, instead of libgpiod (Debian 12's kernel has no gpio-sim); the GPIO switch thread,

@@ -1,4 +1,4 @@
-// libFuzzer target (issue 8, reliability c): arbitrary bytes as a sound file (WAV, FLAC, OGG, or
+// libFuzzer target : arbitrary bytes as a sound file (WAV, FLAC, OGG, or
 // anything libsndfile recognises) through ReadAudioFile, which documents LoadError for every bad
 // file. ReadAudioFile takes a path, so the bytes go into an anonymous memory file (memfd) opened
 // through /proc/self/fd: no disk writes per input. The kiosk's own limits are used unchanged.
@@ -14,8 +14,8 @@
 #include "surface/image_loader.h"  // LoadError
 
 // libsndfile 1.2.0 leaks libvorbis's header state when sf_open fails on a corrupt Ogg file
-// (libsndfile issue #922; see tests/surface/test_loader_fuzz.cpp): suppressed inside libvorbis
-// only, so a leak of ours is still reported.
+// (reported upstream as libsndfile #922; see tests/surface/test_loader_fuzz.cpp): suppressed
+// inside libvorbis only, so a leak of ours is still reported.
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:libvorbis.so\n";
 }

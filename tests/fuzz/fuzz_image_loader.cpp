@@ -1,4 +1,4 @@
-// libFuzzer target (issue 8, reliability c): arbitrary bytes as a picture (PNG, JPEG or BMP)
+// libFuzzer target : arbitrary bytes as a picture (PNG, JPEG or BMP)
 // through the same header checks and OpenCV decoding the kiosk uses for textures. DecodeGrayImage
 // documents LoadError for every bad file; anything else escaping is a bug. The pixel limit is
 // lowered from the kiosk's 4096 x 4096 to 512 x 512 so one input decodes in milliseconds: the

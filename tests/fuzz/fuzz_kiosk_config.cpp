@@ -1,4 +1,4 @@
-// libFuzzer target (issue 8, reliability c): arbitrary bytes as the kiosk's configuration file.
+// libFuzzer target : arbitrary bytes as the kiosk's configuration file.
 // ParseKioskConfig documents ConfigError for every bad file; anything else escaping (another
 // exception, a crash, a sanitizer report) is a bug. Built with -fsanitize=fuzzer under SAS_FUZZ,
 // or linked with replay_main.cpp so CTest replays the corpus and kept crash inputs every run.

@@ -1,4 +1,4 @@
-// libFuzzer target (issue 8, reliability c): arbitrary bytes as a material file
+// libFuzzer target : arbitrary bytes as a material file
 // (textures/materials/<name>.toml). ParseMaterial documents MaterialError for every bad file;
 // anything else escaping is a bug. See fuzz_kiosk_config.cpp for how the targets are built.
 #include <cmath>

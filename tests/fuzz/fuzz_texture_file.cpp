@@ -1,4 +1,4 @@
-// libFuzzer target (issue 8, reliability c): arbitrary bytes as a texture description
+// libFuzzer target : arbitrary bytes as a texture description
 // (textures/<name>/texture.toml). ParseTextureFile documents LoadError for every bad file; anything
 // else escaping is a bug. Only the text is parsed: the picture files it names are not opened.
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Fault injection (issue 8, reliability a), the in-process half of one scripted run
+// Fault injection, the in-process half of one scripted run
 // (tests/e2e/kiosk_faults_e2e.sh runs this, then the process-level half with the real binary):
 // the kiosk's own control loop body (KioskControl::Step, as app/live_kiosk.cpp runs it) and the
 // real KioskEngine, with the platform fakes in place of the devices, go through every fault in
@@ -123,7 +123,7 @@ TEST_CASE(
   fs::create_directories(state);
   platform::Logger& log = platform::DefaultLogger();  // the engine's and the board's, as live
 
-  // ---- start: corrupt configuration (acceptance 4), damaged textures, GPIO chip missing
+  // ---- start: corrupt configuration, damaged textures, GPIO chip missing
   const std::string config_path =
       dir.Write("kiosk.toml", "[audio]\nbuffer_frames = 3\n[session]\nidle_timeout_s = 30\n");
   const std::uint64_t at_start = log.Count();

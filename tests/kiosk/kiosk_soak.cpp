@@ -1,4 +1,4 @@
-// Soak run (issue 8, reliability b): an accelerated simulated day of random visitors through the
+// Soak run: an accelerated simulated day of random visitors through the
 // real KioskEngine on its virtual clock, with the platform's audio callback core in place of the
 // sound card (every 128-frame block of the day is rendered, idle time included: the engine's own
 // idle path, nothing skipped) and the fake microphone fed synthesised speech.

@@ -67,7 +67,7 @@ Material Parse(const std::string& text) {
   return ParseMaterial(text, "m.toml", "test");
 }
 
-// Hunt–Crossley contact time of a mass on a rigid wall with λ = 0 (reference/hunt-crossley.md):
+// Hunt–Crossley contact time of a mass on a rigid wall with λ = 0 (Hunt & Crossley 1975):
 // t_c = 2 (x_max / v) √π Γ(1 + 1/(α+1)) / Γ(½ + 1/(α+1)), x_max = ((α+1) m v² / (2k))^(1/(α+1)).
 double ContactTimeS(double mass_kg, double k, double alpha, double v_mps) {
   const double x_max =
@@ -106,7 +106,7 @@ TEST_CASE("shipped materials keep every mode below 0.45 x 48 kHz and decaying", 
 
 TEST_CASE("shipped materials resolve every contact with at least 8 samples at 48 kHz and 1 m/s",
           "[kiosk]") {
-  // Samples per contact decide the impact's accuracy (reference/hunt-crossley.md): fewer than ~8
+  // Samples per contact decide the impact's accuracy: fewer than ~8
   // and every scheme needs heavy oversampling. Checked at a brisk 1 m/s with the material's probe.
   for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
     INFO(material.name);
@@ -293,7 +293,7 @@ TEST_CASE(
     "every shipped material runs the default contact scheme and meets 1e-4 restitution error "
     "at 48 kHz with automatic oversampling at every one of 32 onset phases from 0.1 to 3 m/s",
     "[kiosk]") {
-  // DESIGN.md §4, issue 4: the default configuration against the Lambert-W closed form, through
+  // The default configuration against the Lambert-W closed form, through
   // the engine's own kernel, with each material's probe mass and contact parameters.
   for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
     const auto& impact = material.params.impact;

@@ -1,4 +1,4 @@
-// The offline render command end to end (issue 3, acceptance 7): the WAV it writes is read back
+// The offline render command end to end: the WAV it writes is read back
 // with libsndfile and checked for what a listener and the transducer would get — sound while the
 // pen is down, silence (< -90 dBFS) after it is lifted and the tail has run out, and a haptic
 // channel with no energy above 1 kHz beyond -40 dB of its total. Plus the command line's errors.
@@ -229,7 +229,7 @@ TEST_CASE("the haptic channel of a rendered scribble has at most -40 dB of its e
   Render(options);
   const Wav wav = ReadWav(options.out_path);
   REQUIRE(wav.channels == 2);
-  // Channel 2 drives a 40–800 Hz transducer (issue 3, acceptance 7).
+  // Channel 2 drives a 40–800 Hz transducer.
   CHECK(EnergyFractionAbove(wav.channel[1], 48000.0, 1000.0) < 1e-4);
   // The sound channel, for contrast, has real content above 1 kHz (wood modes up to 2.6 kHz),
   // so the check above is not met merely because the render is dull.

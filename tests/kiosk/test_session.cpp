@@ -1,4 +1,4 @@
-// The Session state machine: each visitor-facing rule of issue 7, driven with explicit times.
+// The Session state machine: each visitor-facing rule, driven with explicit times.
 #include <algorithm>
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Loudness and vibration matching of the four kiosk textures (issue 7, noisy room): the same
+// Loudness and vibration matching of the four kiosk textures (for a noisy room): the same
 // visitor stroke played on each committed texture through the kiosk's own path — KioskEngine on its
 // virtual clock with the kiosk's pen mapping, the picture-derived surface, all four textures loaded
 // as in the kiosk (so each stroke gets its per-stroke correction, kiosk/stroke_gain.h) and the

@@ -1,6 +1,6 @@
 #pragma once
 // A private ALSA configuration for running the real PortAudio path with no sound card
-// (../shared/reference/platform.md): ALSA's `file` plugin writes what is played to out.raw and
+// (so CI needs none): ALSA's `file` plugin writes what is played to out.raw and
 // reads capture from in.raw, both float32 LE interleaved in the stream's own format. Setting
 // ALSA_CONFIG_PATH replaces the system's alsa.conf, so pcm.null is defined here too.
 

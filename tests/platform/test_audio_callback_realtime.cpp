@@ -1,4 +1,4 @@
-// The audio callback path allocates nothing and takes no lock (issue 6, acceptance 4).
+// The audio callback path allocates nothing and takes no lock (either can stall it).
 // This executable replaces the global operator new/delete and interposes pthread's lock
 // functions; both count calls made on a thread while its `t_counting` flag is set. The tests then
 // call the exact functions PortAudio calls on its audio thread (output: callback core + a

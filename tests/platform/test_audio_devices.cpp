@@ -1,5 +1,5 @@
 // PortAudio discovery through a private ALSA configuration (no sound card needed): ALSA's `file`
-// plugin stands in for the speaker, as in ../shared/reference/platform.md.
+// plugin stands in for the speaker (see alsa_file_config.h).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>

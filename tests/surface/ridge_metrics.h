@@ -1,5 +1,5 @@
 #pragma once
-// Accuracy of picture -> height field against a texture's true height map (issue 5), shared by
+// Accuracy of picture -> height field against a texture's true height map, shared by
 // the accuracy test and the surface benchmark. Computed independently of the code under test:
 //   true ridges: the maxima across the slope of the true map (smoothed at 1 px, slope in mm/mm,
 //     non-maximum suppression along the slope direction) where the slope exceeds ridge_slope:

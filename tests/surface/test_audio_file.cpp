@@ -1,5 +1,5 @@
 // Audio reading: real files written with libsndfile in each format, read back through the product's
-// reader; every awkward case is either handled as documented or refused (issue 5, acceptance 3).
+// reader; every awkward case is either handled as documented or refused.
 #include <sndfile.h>
 
 #include <catch2/catch.hpp>

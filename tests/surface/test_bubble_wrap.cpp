@@ -1,5 +1,5 @@
 // Bubble wrap: the layout in the texture file matches the bubbles in the true height map; pressing
-// past the force threshold pops a bubble once, flattens it until Reset (issue 5).
+// past the force threshold pops a bubble once, flattens it until Reset.
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Spoken cues (issue 7): the files generated at build time (textures/cue_maker with espeak-ng)
+// Spoken cues: the files generated at build time (textures/cue_maker with espeak-ng)
 // are all there, 48 kHz mono, audible, never clipped and a sentence long; and the kiosk's
 // CueLibrary loads them into RAM, resamples what is not at the device rate, and names whatever
 // is missing instead of failing.

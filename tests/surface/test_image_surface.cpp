@@ -1,5 +1,5 @@
-// Picture -> height field: accuracy on the four generated textures against their true height maps
-// (issue 5, acceptance 1), and the detector's basic properties on pictures with known answers.
+// Picture -> height field: accuracy on the four generated textures against their true height maps,
+// and the detector's basic properties on pictures with known answers.
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Mutated files through the loaders (issue 5, acceptance 3): a few thousand deterministic mutations
+// Mutated files through the loaders: a few thousand deterministic mutations
 // of valid PNG, JPEG, BMP, WAV, FLAC and OGG files. Each must give either a LoadError or a result
 // that is valid by construction (sizes consistent, every value finite and in range); no other
 // exception, no crash (run under ASan/UBSan too). Plus the named bad inputs: zero-byte, 1 x 1,
@@ -19,7 +19,7 @@
 using namespace sas::surface;
 
 // LeakSanitizer: when sf_open fails on a corrupt Ogg file, libsndfile 1.2.0 leaves libvorbis's
-// header state allocated (libsndfile issue #922, leak inside vorbis_info_init /
+// header state allocated (reported upstream as libsndfile #922, leak inside vorbis_info_init /
 // vorbis_synthesis_headerin). The leak is in the libraries, not in our reader (which closes every
 // handle it gets), so only allocations made inside libvorbis are suppressed; a leak of ours still
 // fails the ASan run.

@@ -1,5 +1,5 @@
 // The six profile slots: store, recall, replace while a reader still holds the old surface, and
-// save to disk only on request, in a form the loaders read back (issue 5).
+// save to disk only on request, in a form the loaders read back.
 #include <catch2/catch.hpp>
 #include <filesystem>
 

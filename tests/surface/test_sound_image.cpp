@@ -1,5 +1,4 @@
-// Sound -> image -> profile (paper figure 3) and sound/vibration -> profile (issue 5, acceptance
-// 2).
+// Sound -> image -> profile (paper figure 3) and sound/vibration -> profile.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>

@@ -1,5 +1,5 @@
 // Texture files: the four committed ones load; every kind of mistake is reported with
-// file:line:col and the key (issue 5).
+// file:line:col and the key.
 #include <catch2/catch.hpp>
 #include <filesystem>
 

@@ -1,10 +1,10 @@
 #pragma once
-// Randomised stress sets for the synth (issue 4), shared by the Catch2 stress test
+// Randomised stress sets for the synth, shared by the Catch2 stress test
 // (tests/synth/test_stress.cpp, a few thousand sets) and the benchmark's long mode
 // (`contact_bench --stress N`, >= 10^5 sets), so both draw from the same ranges and run the same
 // checks. A set is fully determined by (seed, index): a failing index can be replayed alone.
 //
-// Ranges (issue 4): Hunt–Crossley k 1e3–1e12, α 1–4, μ 0–10; probe mass 1e-4–1 kg; speeds up to
+// Ranges: Hunt–Crossley k 1e3–1e12, α 1–4, μ 0–10; probe mass 1e-4–1 kg; speeds up to
 // 10 m/s; 1–64 modes, 20 Hz – 24 kHz (some above the 0.45 fs limit), decays 1 ms–10 s, modal
 // masses 1e-4–10 kg; friction σ0 up to 1e7; every contact scheme and oversampling; exaggerated
 // output gains; a random gesture with discontinuous jumps of position, force, style, width and

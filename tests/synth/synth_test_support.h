@@ -106,7 +106,7 @@ inline double Cents(double measured, double target) {
   return 1200.0 * std::log2(measured / target);
 }
 
-// The rubbing demo of the Sound Design Toolkit (../shared/reference/friction.md): σ0 = 1000,
+// The rubbing demo of the Sound Design Toolkit: σ0 = 1000,
 // σ1 = 39, σ2 = 13, c_ba = 0.3, μ_d = 0.03, μ_s = 0.75, v_s = 0.05, exciter 0.1 kg, six modes
 // 100–600 Hz with decays 0.01–0.06 s.
 // A small, well-damped wooden board: 12 modes 220 Hz - 5 kHz, decays 25-300 ms, with impact,
@@ -127,8 +127,7 @@ inline MaterialParams WoodLikeBoard() {
   return m;
 }
 
-// The friction of textures/materials/metal.toml (plastic nib on steel; the SDT's typical set,
-// ../shared/reference/friction.md).
+// The friction of textures/materials/metal.toml (plastic nib on steel; the SDT's typical set).
 inline FrictionParams MetalFriction() {
   FrictionParams f;
   f.enabled = true;

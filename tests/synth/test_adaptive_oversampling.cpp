@@ -1,4 +1,4 @@
-// Issue 4: adaptive contact oversampling (ContactSubstepsForSpeed in synth/contact.h). With the
+// Adaptive contact oversampling (ContactSubstepsForSpeed in synth/contact.h). With the
 // automatic setting the kernel chooses the sub-steps of each compression from its impact speed:
 // the accuracy rule (1e-4 relative restitution from 0.1 m/s, 1e-5 m/s absolute below) is checked
 // against the Lambert-W closed form through the scene's own kernel (SimulateRigidWallImpact), and

@@ -1,6 +1,6 @@
-// Acceptance 2 of issue 3: a probe hitting a rigid, immovable body through the engine's own
+// A probe hitting a rigid, immovable body through the engine's own
 // contact kernel (SimulateRigidWallImpact runs StepContactSample, the code Scene::Process runs)
-// against the closed forms of ../shared/reference/hunt-crossley.md (HuntCrossleyImpact, itself
+// against the Hunt–Crossley closed forms (HuntCrossleyImpact, itself
 // checked against tabulated Lambert-W values in test_hunt_crossley_closed_form.cpp).
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -144,7 +144,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "acceptance 3 of issue 4: at k 1e10 and 1e12 (fewer than 3 samples per contact at "
+    "at k 1e10 and 1e12 (fewer than 3 samples per contact at "
     "48 kHz) the default configuration meets 1e-3 restitution error and never gains energy",
     "[dsp]") {
   const ImpactParams defaults;  // the default scheme with automatic oversampling

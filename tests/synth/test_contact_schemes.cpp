@@ -1,8 +1,8 @@
-// Issue 4: the four contact schemes (synth/contact.h) through the engine's own kernel
+// The four contact schemes (synth/contact.h) through the engine's own kernel
 // (SimulateRigidWallImpact runs StepContactSample, the code Scene::Process runs), each against the
-// closed forms of ../shared/reference/hunt-crossley.md (HuntCrossleyImpact): accuracy at its
+// Hunt–Crossley closed forms (HuntCrossleyImpact): accuracy at its
 // automatic oversampling, its order of convergence, and passivity over the whole parameter range
-// of DESIGN.md §4 (k <= 1e12, 1 <= α <= 4, probe 0.1 g .. 1 kg, v <= 10 m/s).
+// (k <= 1e12, 1 <= α <= 4, probe 0.1 g .. 1 kg, v <= 10 m/s).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -149,7 +149,7 @@ TEST_CASE(
                 INFO(c.name << " k " << k << " alpha " << alpha << " mass " << mass << " v " << v_in
                             << " oversample " << oversample << " phase " << p);
                 REQUIRE(run.separated);
-                // DESIGN.md §4: e <= e_exact (1 + 1e-6); the discrete gradient's solve leaves
+                // Passivity: e <= e_exact (1 + 1e-6); the discrete gradient's solve leaves
                 // ~1e-9 of rounding in the most under-resolved cases.
                 CHECK(run.exit_velocity_mps <= v_in * (1.0 + 1e-6));
                 worst_gain = std::max(worst_gain, run.exit_velocity_mps / v_in - 1.0);

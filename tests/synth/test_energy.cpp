@@ -1,4 +1,4 @@
-// Acceptance 3 of issue 3: with the probe resting on a lossy resonator and no further input, the
+// With the probe resting on a lossy resonator and no further input, the
 // total mechanical energy (resonator + probe + contact energy + bristle + potential of the
 // constant push) never increases from one sample to the next. Every contact scheme guarantees it
 // by construction (contact.h) for its own contact energy: V(x) for the discrete gradient, the

@@ -1,5 +1,5 @@
-// Acceptance 4 of issue 3: the elasto-plastic friction (Dupont et al. 2002; equations in
-// ../shared/reference/friction.md) as run by the scene. Expected values are computed here from the
+// The elasto-plastic friction (Dupont, Hayward, Armstrong & Altpeter, IEEE TAC 47(5), 2002) as
+// run by the scene. Expected values are computed here from the
 // model's equations (Stribeck curve, break-away deflection), not taken from the engine.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The transducer channel's protections for sensitive visitors (issue 7): a peak ceiling below full
+// The transducer channel's protections for sensitive visitors: a peak ceiling below full
 // scale that no gain can push the haptic output past, and a low-vibration mode, switched at run
 // time, that lowers the haptic level by exactly its configured amount (after its 20 ms ramp)
 // while the speaker channel stays bit for bit the same.

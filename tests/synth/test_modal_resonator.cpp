@@ -1,4 +1,4 @@
-// Acceptance 1 of issue 3: the modes ring at the set frequency and decay at the set rate, up to
+// The modes ring at the set frequency and decay at the set rate, up to
 // 0.45 fs, at 44.1, 48 and 96 kHz. The rendered signal is fitted by the exact two-term recursion of
 // a sampled damped sinusoid (least squares), independent of how the resonator computes it.
 #include <catch2/catch.hpp>

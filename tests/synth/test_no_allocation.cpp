@@ -1,4 +1,4 @@
-// Acceptance 6 of issue 3: Scene::Process() allocates nothing (this executable replaces the global
+// Scene::Process() allocates nothing (this executable replaces the global
 // operator new/delete and counts calls while rendering) and runs with denormals flushed, leaving
 // the caller's floating-point mode as it found it. Its own executable because the replacement
 // operators are global.

@@ -1,4 +1,4 @@
-// Acceptance 5 of issue 3 (block rendering = per-sample rendering bit for bit; Reset() = a fresh
+// Block rendering = per-sample rendering bit for bit; Reset() = a fresh
 // instance) plus the properties of the output stage (|sample| <= 1, never NaN, haptic band,
 // haptic path off) and of the surface reader (width window, penetration, roll envelope).
 #include <algorithm>

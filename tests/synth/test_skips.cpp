@@ -1,4 +1,4 @@
-// Issue 4, "skip what the scene doesn't need": each skip is rendered against the full computation
+// Skip what the scene doesn't need: each skip is rendered against the full computation
 // (the same scene with that skip switched off, SceneSkips) and must not change the output: bit for
 // bit, or within 1e-7 where the skip starts at a threshold (idle, relaxed friction).
 //   (1) idle blocks: pen up and silent -> zeros without running the kernel, wakes on the next touch

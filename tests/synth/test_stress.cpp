@@ -1,4 +1,4 @@
-// Issue 4, stress test (acceptance 4 runs it under ASan/UBSan too): randomised parameter sets over
+// Stress test (also run under ASan/UBSan): randomised parameter sets over
 // the whole range the synth accepts (tests/synth/stress_sets.h, shared with `contact_bench
 // --stress N`, which runs >= 10^5 of them), each checked for NaN/Inf, the limiter's bound and
 // energy creation by the numerics. A fixed seed; a failing set is named by its index.
