@@ -135,10 +135,15 @@ fi
 umount "$root/proc" "$root/var/cache/apt/archives"
 rm -f "$root/tmp/$(basename "$deb")"
 # The staff guide's configuration step: staff edit /etc/sketch-a-scratch/kiosk.toml. A short
-# idle timeout keeps the test short; the audio device is the box's card, by name.
+# idle timeout keeps the test short; the audio device is the box's card, by name. The visitor
+# below rests the pen 2 s after its drag so that the emulated machine's slow frames catch up; a
+# longer rest before the description is spoken keeps that pause from reading as a blind visitor's
+# (the description gesture has its own tests), so the stroke's decay is measured on the stroke.
 config="$root/etc/sketch-a-scratch/kiosk.toml"
 [ -f "$config" ] || die "the package made no $config"
 sed -i 's/^idle_timeout_s = .*/idle_timeout_s = 10/' "$config"
+sed -i 's/^describe_after_rest_s = .*/describe_after_rest_s = 6.0/' "$config"
+grep -q '^describe_after_rest_s = 6.0' "$config" || die "no describe_after_rest_s in $config"
 sed -i 's/^output_device = .*/output_device = "Loopback: PCM (hw:0,0)"/; s/^input_device = .*/input_device = "Loopback: PCM (hw:0,0)"/' "$config"
 echo "# staff edit: kept across upgrades" >>"$config"
 

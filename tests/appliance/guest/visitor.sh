@@ -92,9 +92,11 @@ judge security_exposure "systemd-analyze security: ${exposure:-?}" le "${exposur
 restarts0=$(systemctl show -p NRestarts --value "$unit")
 value restarts_at_boot "$restarts0"
 journalctl -u "$unit" -b -o cat --no-pager | grep -i 'cue' | head -5
-judge cues_installed "$(ls /usr/share/sketch-a-scratch/cues 2>/dev/null | wc -l) cue files" \
-  test "$(ls /usr/share/sketch-a-scratch/cues/*_name.wav 2>/dev/null | wc -l)" -eq 4
-cp /usr/share/sketch-a-scratch/cues/*.wav "$out/cues/" 2>/dev/null
+# One folder of cues per language, each with the four textures' names; the default language's
+# go to the host, which looks for them on the speaker.
+judge cues_installed "$(ls /usr/share/sketch-a-scratch/cues 2>/dev/null | tr '\n' ' ')languages, $(ls /usr/share/sketch-a-scratch/cues/*/*_name.wav 2>/dev/null | wc -l) name cues" \
+  test "$(ls /usr/share/sketch-a-scratch/cues/*/*_name.wav 2>/dev/null | wc -l)" -eq 20
+cp /usr/share/sketch-a-scratch/cues/en/*.wav "$out/cues/" 2>/dev/null
 judge no_cue_warning "journal" \
   bash -c "! journalctl -u $unit -b -p warning -o cat --no-pager | grep -q 'spoken cues'"
 
