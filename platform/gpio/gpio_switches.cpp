@@ -1,7 +1,6 @@
 // GPIO token switches (see gpio_switches.h).
 #include "platform/gpio/gpio_switches.h"
 
-#include <sys/eventfd.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -131,8 +130,7 @@ bool GpioSwitchInput::Start(std::string* error) {
     if (initial_[static_cast<std::size_t>(i)])
       queue_.TryPush(SwitchEvent{now_ns, static_cast<std::int8_t>(i), true});
   }
-  stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
-  if (stop_fd_ < 0) {
+  if (!stop_.Open()) {
     if (error) *error = "eventfd failed";
     return false;
   }
@@ -142,12 +140,10 @@ bool GpioSwitchInput::Start(std::string* error) {
 
 void GpioSwitchInput::Stop() {
   if (thread_.joinable()) {
-    const std::uint64_t one = 1;
-    [[maybe_unused]] const ssize_t n = write(stop_fd_, &one, sizeof one);
+    stop_.Signal();
     thread_.join();
   }
-  if (stop_fd_ >= 0) close(stop_fd_);
-  stop_fd_ = -1;
+  stop_.Close();
 }
 
 void GpioSwitchInput::Run() {
@@ -185,7 +181,7 @@ void GpioSwitchInput::Run() {
 
 bool GpioSwitchInput::Listen() {
   std::vector<pollfd> fds = source_->Fds();
-  fds.push_back({stop_fd_, POLLIN, 0});
+  fds.push_back({stop_.fd(), POLLIN, 0});
   std::vector<pollfd> ready;
   std::vector<RawEdge> edges;
   auto sink = [this](const SwitchEvent& e) { queue_.TryPush(e); };
@@ -240,7 +236,7 @@ bool GpioSwitchInput::Reopen(std::int64_t now_ns) {
 }
 
 bool GpioSwitchInput::WaitForStop(int timeout_ms) {
-  pollfd stop{stop_fd_, POLLIN, 0};
+  pollfd stop{stop_.fd(), POLLIN, 0};
   return poll(&stop, 1, timeout_ms) > 0 && stop.revents != 0;
 }
 

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "platform/common/wake_event.h"
 #include "platform/device_status.h"
 #include "platform/input/debouncer.h"
 #include "platform/input/switch_input.h"
@@ -125,7 +126,7 @@ class GpioSwitchInput final : public SwitchInput {
   std::atomic<bool> lost_{false};
   GpioEdgeProcessor processor_;
   std::array<bool, kSwitchInputCount> initial_{};
-  int stop_fd_ = -1;
+  WakeEvent stop_;
   std::thread thread_;
   std::atomic<std::uint64_t> edges_{0};
 };

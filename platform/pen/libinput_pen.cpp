@@ -6,26 +6,18 @@
 #include <libinput.h>
 #include <libudev.h>
 #include <poll.h>
-#include <sys/eventfd.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <thread>
 
 #include "platform/common/clock.h"
+#include "platform/common/wake_event.h"
+#include "platform/pen/libinput_open.h"
 #include "platform/pen/pen_source.h"
 
 namespace sas::platform {
 namespace {
-
-int OpenRestricted(const char* path, int flags, void* /*user_data*/) {
-  const int fd = open(path, flags | O_CLOEXEC);
-  return fd < 0 ? -errno : fd;
-}
-void CloseRestricted(int fd, void* /*user_data*/) {
-  close(fd);
-}
-constexpr libinput_interface kInterface = {OpenRestricted, CloseRestricted};
 
 struct UdevDeleter {
   void operator()(udev* u) const { udev_unref(u); }
@@ -45,7 +37,7 @@ class LibinputPenSource final : public PenSource {
     Stop();
     udev_.reset(udev_new());
     if (!udev_) return Fail(error, "udev unavailable");
-    input_.reset(libinput_udev_create_context(&kInterface, nullptr, udev_.get()));
+    input_.reset(libinput_udev_create_context(LibinputOpenInterface(), nullptr, udev_.get()));
     if (!input_) return Fail(error, "libinput context failed");
     if (libinput_udev_assign_seat(input_.get(), config_.seat.c_str()) != 0)
       return Fail(error,
@@ -66,19 +58,17 @@ class LibinputPenSource final : public PenSource {
     if (!Connected() && error) {
       *error = "no pen tablet among " + std::to_string(devices) + " input devices";
     }
-    stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+    stop_.Open();
     thread_ = std::thread([this] { Run(); });
     return true;
   }
 
   void Stop() override {
     if (thread_.joinable()) {
-      const std::uint64_t one = 1;
-      [[maybe_unused]] const ssize_t n = write(stop_fd_, &one, sizeof one);
+      stop_.Signal();
       thread_.join();
     }
-    if (stop_fd_ >= 0) close(stop_fd_);
-    stop_fd_ = -1;
+    stop_.Close();
     input_.reset();
     udev_.reset();
   }
@@ -99,7 +89,7 @@ class LibinputPenSource final : public PenSource {
   }
 
   void Run() {
-    pollfd fds[2] = {{libinput_get_fd(input_.get()), POLLIN, 0}, {stop_fd_, POLLIN, 0}};
+    pollfd fds[2] = {{libinput_get_fd(input_.get()), POLLIN, 0}, {stop_.fd(), POLLIN, 0}};
     for (;;) {
       heartbeat_ns_.store(MonotonicNowNs(), std::memory_order_relaxed);
       // A bounded wait keeps the heartbeat fresh for the watchdog while the pen is idle.
@@ -168,7 +158,7 @@ class LibinputPenSource final : public PenSource {
   DeviceStatusBoard* board_;
   std::unique_ptr<udev, UdevDeleter> udev_;
   std::unique_ptr<libinput, LibinputDeleter> input_;
-  int stop_fd_ = -1;
+  WakeEvent stop_;
   std::thread thread_;
   bool tip_down_ = false;
   bool in_proximity_ = false;

@@ -1,28 +1,12 @@
 // Tablet discovery through libinput + udev (see tablet_devices.h).
 #include "platform/pen/tablet_devices.h"
 
-#include <fcntl.h>
+#include "platform/pen/libinput_open.h"
+
 #include <libinput.h>
 #include <libudev.h>
-#include <unistd.h>
-
-#include <cerrno>
 
 namespace sas::platform {
-namespace {
-
-int OpenRestricted(const char* path, int flags, void* /*user_data*/) {
-  const int fd = open(path, flags | O_CLOEXEC);
-  return fd < 0 ? -errno : fd;
-}
-
-void CloseRestricted(int fd, void* /*user_data*/) {
-  close(fd);
-}
-
-constexpr libinput_interface kInterface = {OpenRestricted, CloseRestricted};
-
-}  // namespace
 
 std::vector<TabletInfo> ListTablets(std::string* error) {
   std::vector<TabletInfo> tablets;
@@ -31,7 +15,7 @@ std::vector<TabletInfo> ListTablets(std::string* error) {
     if (error) *error = "udev unavailable";
     return tablets;
   }
-  libinput* input = libinput_udev_create_context(&kInterface, nullptr, udev_context);
+  libinput* input = libinput_udev_create_context(LibinputOpenInterface(), nullptr, udev_context);
   if (input == nullptr) {
     udev_unref(udev_context);
     if (error) *error = "libinput context failed";
