@@ -11,7 +11,7 @@
 
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
-#include "kiosk/texture_levels.h"
+#include "calibration/texture_levels.h"
 #include "kiosk/virtual_visit.h"
 #include "sas/version.h"
 #include "surface/loudness.h"
@@ -223,7 +223,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
         ++row;
       }
     }
-    // The same stroke on every texture: how far apart their levels are (kiosk/stroke_gain.h).
+    // The same stroke on every texture: how far apart their levels are (levels/stroke_gain.h).
     if (!options.quiet) {
       for (const auto& style : styles) {
         double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};

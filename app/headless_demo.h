@@ -33,7 +33,7 @@ struct HeadlessOptions {
 };
 
 // Adds `--out DIR` and `--quick` to a command line built on the shared parser
-// (kiosk/command_line.h): `demo` and the bare program take them.
+// (tools/command_line.h): `demo` and the bare program take them.
 void AddHeadlessOptions(CLI::App& app, HeadlessOptions& options);
 
 // Runs the visit; returns the process exit code (0 ok, 1 failure). Never throws.

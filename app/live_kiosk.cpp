@@ -19,8 +19,8 @@
 #include <optional>
 
 #include "kiosk/ambient_gain.h"
-#include "kiosk/command_line.h"
-#include "kiosk/kiosk_config.h"
+#include "tools/command_line.h"
+#include "files/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "headless_demo.h"
-#include "kiosk/command_line.h"
-#include "kiosk/impact_command.h"
-#include "kiosk/render_command.h"
+#include "tools/command_line.h"
+#include "tools/impact_command.h"
+#include "tools/render_command.h"
 #include "live_kiosk.h"
 #include "platform/discovery.h"
 #include "sas/version.h"

@@ -1,5 +1,5 @@
 // cue_maker: speaks the kiosk's spoken cues with espeak-ng at build time (for visitors who cannot
-// see the screen), in every language of textures/strings/ (kiosk/strings.h). For each language
+// see the screen), in every language of textures/strings/ (files/strings.h). For each language
 // <code> it writes <out>/<code>/<key>.wav and, next to it, <key>.txt with the sentence it spoke
 // (the kiosk reports it with each cue it plays, so a test can check what was heard against the
 // string table). Keys: each message of the table's [cues], and for each texture folder in
@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/strings.h"
+#include "files/strings.h"
 #include "surface/audio_file.h"
 #include "surface/cue_library.h"
 #include "surface/loudness.h"
@@ -42,8 +42,8 @@ namespace fs = std::filesystem;
 
 constexpr double kRateHz = 48000.0;
 // EBU R 128's programme target: a cue sits at the level of broadcast speech; the exhibit's strokes
-// at the kiosk's default gains are about -24 LUFS (kiosk/texture_levels.h), so cues and textures
-// are heard at a similar level.
+// at the kiosk's default gains are about -24 LUFS (calibration/texture_levels.h), so cues and
+// textures are heard at a similar level.
 constexpr double kCueLoudnessLufs = -23.0;
 constexpr double kCuePeakDbfs = -1.0;
 constexpr double kTrimBelowPeakDb = -40.0;

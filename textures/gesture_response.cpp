@@ -1,5 +1,5 @@
 // gesture_response: how each kiosk texture and the voice surface answer the hand
-// (kiosk/gesture_response.h): level and spectral centroid against speed, pressure and style.
+// (calibration/gesture_response.h): level and spectral centroid against speed, pressure and style.
 //
 //   gesture_response --textures DIR [--docs DIR] [--places N]
 //
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/gesture_response.h"
+#include "calibration/gesture_response.h"
 
 namespace {
 
@@ -159,7 +159,8 @@ int main(int argc, char** argv) {
           "tilted 40°, a 4 mm probe; roll: a ball following the relief), through the kiosk's "
           "synth at gain 0 dB, "
        << places
-       << " places each (kiosk/gesture_response.h). Sound and vibration are RMS levels of the "
+       << " places each (calibration/gesture_response.h). Sound and vibration are RMS levels of "
+          "the "
           "moving stroke in dB re full scale; the centroid is channel 1's power-weighted mean "
           "frequency.\n\n![level and centroid against speed](gesture-response.png)\n\n";
     md << "## Relations\n\nWanted on every surface: speed 30 → 300 mm/s raises the sound by ≥ 6 "

@@ -1,6 +1,6 @@
 // population_levels: the kiosk textures' loudness and vibration strength over a population of
-// visitor strokes (kiosk/texture_levels.h, VisitorPopulation), through the kiosk engine with all
-// four textures loaded (the per-stroke correction acting as in the kiosk), at each texture's
+// visitor strokes (calibration/texture_levels.h, VisitorPopulation), through the kiosk engine with
+// all four textures loaded (the per-stroke correction acting as in the kiosk), at each texture's
 // [gains] and the kiosk's default global gains.
 //
 //   population_levels [--textures DIR] [--strokes N] [--seed S] [--docs DIR]
@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/kiosk_config.h"
+#include "calibration/texture_levels.h"
+#include "files/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
-#include "kiosk/texture_levels.h"
 #include "surface/texture_file.h"
 
 int main(int argc, char** argv) {
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
           "Written by `population_levels --docs docs` (textures/population_levels.cpp); do not "
           "edit.\n"
        << count << " strokes from seed " << seed
-       << " (kiosk/texture_levels.h, VisitorPopulation: scrape / rub / roll, 20–400 mm/s "
+       << " (calibration/texture_levels.h, VisitorPopulation: scrape / rub / roll, 20–400 mm/s "
           "log-uniform, pressure 0.1–0.9, 0.3–1.5 s, random places and directions), played on "
           "each texture through the kiosk engine with the four textures loaded (the per-stroke "
           "correction on), at the textures' [gains] and the default kiosk gains (+"

@@ -6,8 +6,8 @@
 // 65535 = height_scale_mm) and texture.toml (see app/surface/texture_file.h), whose [gains] are
 // calibrated last: the kiosk engine loads the written files as the kiosk does and plays a set of
 // visitor strokes (scrape and rub, slow to fast) on them, and the gains bring their loudness and
-// vibration strength to common targets (kiosk/texture_levels.h), so the four textures are matched
-// in level for what visitors do.
+// vibration strength to common targets (calibration/texture_levels.h), so the four textures are
+// matched in level for what visitors do.
 //
 // Deterministic: every random number comes from cv::RNG (a documented multiply-with-carry
 // generator) seeded per texture, OpenCV runs single-threaded, and PNG compression settings are
@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/texture_levels.h"
+#include "calibration/texture_levels.h"
 #include "texture_painting.h"
 
 namespace {
@@ -54,7 +54,7 @@ std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
   const std::size_t speeds = levels.speeds_mm_s.size(), pressures = levels.pressures.size();
   std::string out =
       "\n[levels]\n# This texture's stroke levels at the gains above, measured on the grid below "
-      "(kiosk/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
+      "(levels/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
       "one value per pressure.\n# The kiosk corrects each stroke towards the median of the loaded "
       "textures' levels for it.\n";
   out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
@@ -112,12 +112,13 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
   const sas::kiosk::TextureCalibration calibration = sas::kiosk::CalibrateTexture(path);
   const sas::kiosk::CalibrationGrid grid;
   char note[400];
-  std::snprintf(note, sizeof note,
-                "# Loudness-matched through the kiosk engine (kiosk/texture_levels.h): the mean of "
-                "%zu visitor\n# strokes (the [levels] grid, each at %d places) at %.1f LUFS (ch 1, "
-                "K-weighted) and %.1f dB RMS\n# (ch 2, 40-800 Hz).\n",
-                sas::kiosk::CalibrationStrokes().size(), grid.places, sas::kiosk::kTargetSoundLufs,
-                sas::kiosk::kTargetHapticRmsDb);
+  std::snprintf(
+      note, sizeof note,
+      "# Loudness-matched through the kiosk engine (calibration/texture_levels.h): the mean of "
+      "%zu visitor\n# strokes (the [levels] grid, each at %d places) at %.1f LUFS (ch 1, "
+      "K-weighted) and %.1f dB RMS\n# (ch 2, 40-800 Hz).\n",
+      sas::kiosk::CalibrationStrokes().size(), grid.places, sas::kiosk::kTargetSoundLufs,
+      sas::kiosk::kTargetHapticRmsDb);
   write_toml(calibration.gains, note, LevelsToml(calibration.levels));
 }
 

@@ -12,7 +12,7 @@
 // not room noise. Disabled, the gain is 0 dB. Pure logic, no devices: fed by the wiring with the
 // microphone meter's level, called on the control thread.
 
-#include "kiosk/kiosk_config.h"
+#include "files/kiosk_config.h"
 
 namespace sas::kiosk {
 

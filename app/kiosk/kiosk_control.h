@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/kiosk_config.h"
+#include "files/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_output.h"
 #include "platform/device_status.h"

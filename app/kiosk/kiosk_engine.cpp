@@ -10,11 +10,10 @@
 #include <future>
 #include <stdexcept>
 
-#include "kiosk/atomic_file.h"
-#include "kiosk/builtin_profiles.h"
-#include "kiosk/counters_file.h"
-#include "kiosk/output_gains.h"
-#include "kiosk/render_command.h"
+#include "files/atomic_file.h"
+#include "files/counters_file.h"
+#include "levels/output_gains.h"
+#include "files/material_file.h"
 #include "platform/common/clock.h"
 #include "platform/common/no_dump_buffer.h"
 #include "platform/log/log.h"
@@ -983,7 +982,7 @@ void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
   }
   target.scene.Prepare(material.params, output, target.field->View());
   current_field_ = std::move(field);
-  current_relief_m_ = ReliefM(*current_field_);
+  current_relief_m_ = surface::ReliefM(*current_field_);
   Message message;
   message.kind = Message::Kind::kSwitch;
   message.time_ns = last_now_ns_;

@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "files/counters_file.h"
+
 namespace sas::kiosk {
 
 enum class SessionMode : std::uint8_t { kAttract, kExploring, kCountdown, kRecording };
@@ -90,24 +92,6 @@ struct SessionConfig {
   double long_hold_s = 1.2;
   double staff_panel_timeout_s = 300.0;
   double invitation_interval_s = 0.0;  // 0: no spoken invitation
-};
-
-// Anonymous usage counters shown on the staff panel (and persisted by the wiring).
-// Counts stop at the largest TOML integer (2^63 - 1) instead of wrapping to zero, so the file
-// stays valid TOML and a count never goes down.
-inline constexpr std::uint64_t kMaxUsageCount = 0x7fffffffffffffffULL;
-inline void CountOne(std::uint64_t& count) {
-  if (count < kMaxUsageCount) ++count;
-}
-
-struct UsageCounters {
-  std::vector<std::uint64_t> strokes_per_texture;  // pen-down strokes on each texture
-  std::uint64_t voice_strokes = 0;
-  std::uint64_t recordings = 0;  // good recordings that became a surface
-  std::uint64_t failed_recordings = 0;
-  std::uint64_t sessions = 0;  // visits: first pen contact after the attract screen
-
-  bool operator==(const UsageCounters&) const = default;
 };
 
 class Session {

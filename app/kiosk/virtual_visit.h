@@ -2,7 +2,7 @@
 // VirtualVisit: drives a KioskEngine on its virtual clock the way the kiosk's devices would, one
 // audio block at a time, for everything that plays a visit without real devices: the headless
 // default (app/headless_demo.cpp), the soak run (tests/kiosk/kiosk_soak.cpp) and the texture
-// loudness calibration (kiosk/texture_levels.h), so the three drive the engine with one loop.
+// loudness calibration (calibration/texture_levels.h), so the three drive the engine with one loop.
 //
 // Each block (config.buffer_frames frames, 128 at 48 kHz = 2.67 ms):
 //   pen samples due before the block (a tablet's report rate, 200 Hz) -> KioskEngine::OnPen

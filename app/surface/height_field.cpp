@@ -55,4 +55,10 @@ synth::HeightFieldView HeightField::View() const {
   return view;
 }
 
+double ReliefM(const HeightField& field) {
+  if (field.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(field.heights_m().begin(), field.heights_m().end());
+  return static_cast<double>(*hi) - static_cast<double>(*lo);
+}
+
 }  // namespace sas::surface

@@ -48,4 +48,8 @@ class HeightField {
   std::pmr::vector<double> summed_area_;
 };
 
+// The field's relief: its highest minus its lowest height (0 for an empty field). The pen's
+// full pressure presses this deep, so a texture's pressure range scales with its own relief.
+double ReliefM(const HeightField& field);
+
 }  // namespace sas::surface

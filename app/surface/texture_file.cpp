@@ -192,8 +192,9 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
 
   const toml::table& gains = check.Table(root, top, "gains");
   check.OnlyKeys(gains, "gains.", {"sound_gain_db", "haptic_gain_db"});
-  // Wide upper bound: the calibrated gains (kiosk/texture_levels.h) bring a material whose modes
-  // lie far above the transducer's 40–800 Hz band (glass) up to the others' vibration strength.
+  // Wide upper bound: the calibrated gains (calibration/texture_levels.h) bring a material whose
+  // modes lie far above the transducer's 40–800 Hz band (glass) up to the others' vibration
+  // strength.
   t.gains.sound_gain_db =
       check.Number(gains, gains.source(), "gains.", "sound_gain_db", -60.0, 80.0);
   t.gains.haptic_gain_db =

@@ -1,9 +1,9 @@
 #pragma once
 // A kiosk texture's description file, textures/<name>/texture.toml (written by the texture
-// generator; see docs/engineering.md, "Surfaces and the four textures"). It names the picture and the
-// true height map next to it, the material (a file in textures/materials/), the gains, the probe
-// defaults, the one-sentence description the kiosk speaks, and for bubble wrap the bubble layout
-// and pop force:
+// generator; see docs/engineering.md, "Surfaces and the four textures"). It names the picture and
+// the true height map next to it, the material (a file in textures/materials/), the gains, the
+// probe defaults, the one-sentence description the kiosk speaks, and for bubble wrap the bubble
+// layout and pop force:
 //
 //   name = "bubble wrap"                 description = "One sentence."
 //   material = "bubble_wrap"             # bubble_wrap | glass | wood | dry_soil
@@ -11,12 +11,12 @@
 //   height_scale_mm = 4.0                # height.png value 65535 = this many millimetres
 //   relief_mm = 0.5                      # height of the strongest ridge in the picture's field
 //   [gains]  sound_gain_db = 0.0   haptic_gain_db = 0.0   # -60..80: loudness-matching gains,
-//            calibrated by the generator (kiosk/texture_levels.h), added to the kiosk's gains
+//            calibrated by the generator (calibration/texture_levels.h), added to the kiosk's gains
 //   [levels] scrape_widths_mm = [0.3, 0.9, 1.9]   rub_widths_mm = [2.1, 4.0, 6.0]   # optional
 //            speeds_mm_s = [40.0, 80.0, 160.0, 350.0]   pressures = [0.3, 0.45, 0.6]
 //            scrape_sound_lufs = [...]   scrape_haptic_rms_db = [...]   rub_sound_lufs = [...]
 //            rub_haptic_rms_db = [...]   # widths x speeds x pressures values each, width-major:
-//            the texture's measured stroke levels at its [gains] (kiosk/stroke_gain.h)
+//            the texture's measured stroke levels at its [gains] (levels/stroke_gain.h)
 //            roll_widths_mm, roll_sound_lufs, roll_haptic_rms_db: optional, all three or none
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
@@ -41,8 +41,8 @@ struct TextureGains {
 
 // The texture's loudness (ch 1, LUFS) and vibration strength (ch 2, dB RMS) at its [gains] over a
 // grid of strokes: style (scrape, rub) x pen speed x pen pressure, measured by the texture
-// generator (kiosk/texture_levels.h); the kiosk's per-stroke gains are computed from it
-// (kiosk/stroke_gain.h). Values are [style][width][speed][pressure], flattened in that order.
+// generator (calibration/texture_levels.h); the kiosk's per-stroke gains are computed from it
+// (levels/stroke_gain.h). Values are [style][width][speed][pressure], flattened in that order.
 struct StrokeLevelTable {
   static constexpr int kMaxStyles = 3;   // 0 scrape, 1 rub, 2 roll (optional)
   std::vector<double> scrape_widths_mm;  // probe widths of each style, strictly increasing, > 0;

@@ -19,7 +19,7 @@
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
 // Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
 // kLowVibrationRampS (no click on the transducer) and then holds the exact value.
-// Stroke gains (the kiosk's per-stroke loudness matching, kiosk/stroke_gain.h): two linear factors
+// Stroke gains (the kiosk's per-stroke loudness matching, levels/stroke_gain.h): two linear factors
 // in [0, kMaxStrokeGain] set at run time; a change ramps linearly over the time asked for
 // (kLowVibrationRampS by default, kMinStrokeRampS at least; on the transducer the two multiply into
 // one ramped factor), Reset() jumps to them.

@@ -34,7 +34,7 @@ struct SceneProbeState {
   // feels nothing of the texture (benchmarks check that a stroke feels its profile).
   double felt_profile_m = 0.0;
   bool touched = false;  // a contact force acted during the last sample
-  double x_m = 0.0;               // probe position on the surface
+  double x_m = 0.0;      // probe position on the surface
   double y_m = 0.0;
   int substeps = 1;               // contact sub-steps used in the last sample
   bool friction_skipped = false;  // SceneSkips::relaxed_friction left friction out of it
@@ -101,7 +101,7 @@ class Scene {
   bool low_vibration() const;
 
   // Per-stroke loudness-matching gains (linear factors on ch 1 and ch 2, clamped to
-  // [0, OutputStage::kMaxStrokeGain]; the kiosk's stroke gains, kiosk/stroke_gain.h), applied
+  // [0, OutputStage::kMaxStrokeGain]; the kiosk's stroke gains, levels/stroke_gain.h), applied
   // before the limiters. Callable from any thread while another runs Process(): relaxed atomic
   // stores that Process() reads once per block; a change then ramps linearly over `ramp_s`
   // (default 20 ms; at least OutputStage::kMinStrokeRampS), so it never steps. Reset() and

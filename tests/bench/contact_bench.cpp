@@ -49,15 +49,15 @@
 
 #include "../support/fft.h"
 #include "../synth/stress_sets.h"
-#include "kiosk/builtin_profiles.h"
-#include "kiosk/contact_scheme_names.h"
-#include "kiosk/gesture.h"
-#include "kiosk/render_command.h"
-#include "synth/contact.h"
-#include "synth/hunt_crossley_closed_form.h"
-#include "synth/contact_kernel.h"
-#include "synth/scene.h"
 #include "explicit_reference.h"
+#include "files/contact_scheme_names.h"
+#include "kiosk/gesture.h"
+#include "synth/contact.h"
+#include "synth/contact_kernel.h"
+#include "synth/hunt_crossley_closed_form.h"
+#include "synth/scene.h"
+#include "tools/builtin_profiles.h"
+#include "tools/render_command.h"
 
 namespace {
 
@@ -76,7 +76,7 @@ struct Options {
   bool front_only = false;  // --front: just the comparison with the explicit reference
   int reps = 3;
   long stress = 0;
-  std::string readme;  // --update-readme: replace the table between the bench markers
+  std::string readme;               // --update-readme: replace the table between the bench markers
   std::string docs = SAS_DOCS_DIR;  // --docs: where contact-bench.{md,png} go ("-": nowhere)
 };
 
@@ -512,7 +512,6 @@ std::string Sci(double v, int digits = 1) {
   return s;
 }
 
-
 // ---------------------------------------------------------------- explicit reference front
 
 // The body the probe hits: none (a rigid wall) or metal.toml's 32-mode steel plate made 1e6 times
@@ -529,7 +528,7 @@ struct FrontCase {
   double k, mu_v;
 };
 struct FrontPoint {
-  double error = 0.0;        // worst relative restitution error over the phases
+  double error = 0.0;  // worst relative restitution error over the phases
   double ns_per_contact = 0.0;
   double steps = 0.0;        // contact steps (sub-steps) per contact, mean over phases
   double guard_share = 0.0;  // reference: bisection iterations per step
@@ -723,15 +722,16 @@ std::string ExplicitFront(const Options& opt) {
         "modes) | guard bisections per step |\n|---|---|---:|---:|---:|---:|---:|\n";
   for (double k : ks) {
     for (auto& [os, e] : ref[k]) {
-      std::snprintf(line, sizeof line, "| %.0e | reference ×%d | %s | %.1f | %.0f | %.0f | %.2f |\n",
-                    k, os, Sci(e.error).c_str(), e.steps, e.ns_rigid, e.ns_plate, e.guard);
+      std::snprintf(line, sizeof line,
+                    "| %.0e | reference ×%d | %s | %.1f | %.0f | %.0f | %.2f |\n", k, os,
+                    Sci(e.error).c_str(), e.steps, e.ns_rigid, e.ns_plate, e.guard);
       md << line;
     }
     for (auto& [os, e] : def[k]) {
       const std::string name = os == 0 ? "auto" : "×" + std::to_string(os);
       std::snprintf(line, sizeof line, "| %.0e | %s %s | %s | %.1f | %.0f | %.0f | |\n", k,
-                    SchemeName(dg).c_str(), name.c_str(), Sci(e.error).c_str(), e.steps,
-                    e.ns_rigid, e.ns_plate);
+                    SchemeName(dg).c_str(), name.c_str(), Sci(e.error).c_str(), e.steps, e.ns_rigid,
+                    e.ns_plate);
       md << line;
     }
   }
@@ -758,13 +758,14 @@ std::string ExplicitFront(const Options& opt) {
     auto label = [](int os, double cost) {
       if (os < 0) return std::string("none within the range");
       char b[64];
-      std::snprintf(b, sizeof b, "%s, %.0f ns", os == 0 ? "auto" : ("×" + std::to_string(os)).c_str(),
-                    cost);
+      std::snprintf(b, sizeof b, "%s, %.0f ns",
+                    os == 0 ? "auto" : ("×" + std::to_string(os)).c_str(), cost);
       return std::string(b);
     };
     const bool both = r_os >= 0 && d_os >= 0, both_plate = rp_os >= 0 && dp_os >= 0;
-    std::snprintf(line, sizeof line, "| %.0e | %.2f | %s (plate: %s) | %s (plate: %s) | %s | %s |\n",
-                  k, ref_order[k], label(r_os, r_cost).c_str(), label(rp_os, rp_cost).c_str(),
+    std::snprintf(line, sizeof line,
+                  "| %.0e | %.2f | %s (plate: %s) | %s (plate: %s) | %s | %s |\n", k, ref_order[k],
+                  label(r_os, r_cost).c_str(), label(rp_os, rp_cost).c_str(),
                   label(d_os, d_cost).c_str(), label(dp_os, dp_cost).c_str(),
                   both ? (std::to_string(d_cost / r_cost).substr(0, 4)).c_str() : "-",
                   both_plate ? (std::to_string(dp_cost / rp_cost).substr(0, 4)).c_str() : "-");
@@ -772,7 +773,6 @@ std::string ExplicitFront(const Options& opt) {
   }
   return md.str();
 }
-
 
 // Friction against the explicit reference: a rub (friction only, wood.toml's elasto-plastic set,
 // noise off, 1 N) on wood.toml's first `modes` modes, the hand at v_mps. Output: the pickup
@@ -885,8 +885,9 @@ std::string FrictionFront(const Options& opt) {
         "friction force solved with the modes' exact maps) at ×N sub-steps. Error: relative RMS "
         "difference of the pickup velocity from the synth's ×64 (and, in brackets, from the "
         "reference's ×64); cost: ns per output sample (thread CPU time, best of "
-     << reps << ").\n\n| modes | v (m/s) | config | error vs synth ×64 (vs reference ×64) | ns "
-                "per sample | guard bisections per sample |\n|---:|---:|---|---|---:|---:|\n";
+     << reps
+     << ").\n\n| modes | v (m/s) | config | error vs synth ×64 (vs reference ×64) | ns "
+        "per sample | guard bisections per sample |\n|---:|---:|---|---|---:|---:|\n";
   std::ostringstream summary;
   summary << "\nAt equal accuracy (each against its own ×64: the two models differ slightly, the "
              "synth's σ1 term being switched off where the bristle relaxes against the slip, "
@@ -1056,7 +1057,8 @@ Options ParseArgs(int argc, char** argv) {
       o.readme = value();
     } else if (a == "--help" || a == "-h") {
       std::printf(
-          "usage: contact_bench [--out DIR] [--docs DIR|-] [--quick] [--scene-only] [--front] [--reps N] "
+          "usage: contact_bench [--out DIR] [--docs DIR|-] [--quick] [--scene-only] [--front] "
+          "[--reps N] "
           "[--stress N] "
           "[--update-readme docs/engineering.md]\n");
       std::exit(0);
@@ -1164,7 +1166,7 @@ int main(int argc, char** argv) {
   scene_material.resonator = SteelPlate32();
   const surface::HeightField grating = *kiosk::MakeBuiltinProfile("grating");
   kiosk::GestureMapping mapping;
-  mapping.max_penetration_m = kiosk::ReliefM(grating);
+  mapping.max_penetration_m = surface::ReliefM(grating);
   // The built-in stroke holds the pen at 10° (a 1.25 mm window over the 0.6 mm ridges): the
   // window's mean peaks ~24 µm up, under the 50 µm penetration at half pressure, so the probe would
   // feel nothing and slide flat. Upright (a 0.3 mm point) it rides the ridges.
@@ -1179,9 +1181,10 @@ int main(int argc, char** argv) {
   // nonzero (penetration threshold applied), from a frame-by-frame pass. 0 ends the benchmark.
   const double scene_felt =
       FeltFraction(scene_material, kiosk_output, grating.View(), stroke_commands, stroke_frames);
-  std::printf("kiosk scene (slow stroke, pen upright, on grating): probe feels the profile in "
-              "%.1f %% of its pen-down samples\n",
-              100.0 * scene_felt);
+  std::printf(
+      "kiosk scene (slow stroke, pen upright, on grating): probe feels the profile in "
+      "%.1f %% of its pen-down samples\n",
+      100.0 * scene_felt);
   if (!(scene_felt > 0.0)) {
     std::fprintf(stderr, "the kiosk scene's probe never feels the grating: not measured\n");
     return 1;

@@ -1,13 +1,13 @@
 // Visitor-stroke benchmark: what the synth costs for the strokes visitors actually make. The four
 // kiosk textures, each with its own material, height field (derived from the picture as the kiosk
 // loads it) and output gains, play the seeded visitor population of the level-matching tools
-// (kiosk/texture_levels.h VisitorPopulation: scrape / rub / roll, 20–400 mm/s, pressure 0.1–0.9,
-// any tilt in the style's range, 0.3–1.5 s, random places and directions). Each stroke is mapped
-// as the kiosk maps the pen: screen fractions on the 1920 x 1080 screen -> the picture covering
-// the screen (KioskEngine::ScreenToField's uniform scale and centred crop) -> a Gesture sampled at
-// the tablet's 200 Hz -> GestureToCommands (force = pressure · 2 N, penetration = pressure ·
-// relief, width and style from the tilt). Bubble pops are not simulated (the kiosk's press
-// detector is not part of the synth).
+// (calibration/texture_levels.h VisitorPopulation: scrape / rub / roll, 20–400 mm/s, pressure
+// 0.1–0.9, any tilt in the style's range, 0.3–1.5 s, random places and directions). Each stroke is
+// mapped as the kiosk maps the pen: screen fractions on the 1920 x 1080 screen -> the picture
+// covering the screen (KioskEngine::ScreenToField's uniform scale and centred crop) -> a Gesture
+// sampled at the tablet's 200 Hz -> GestureToCommands (force = pressure · 2 N, penetration =
+// pressure · relief, width and style from the tilt). Bubble pops are not simulated (the kiosk's
+// press detector is not part of the synth).
 //
 // Per stroke: the synth::Scene is rendered in 128-frame blocks from touch-down to lift (the
 // stroke) and for kTailS after (the ring-out), timed with the thread's CPU clock, best of --reps
@@ -37,16 +37,16 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/builtin_profiles.h"
+#include "calibration/texture_levels.h"
+#include "files/kiosk_config.h"
 #include "kiosk/gesture.h"
-#include "kiosk/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
-#include "kiosk/output_gains.h"
-#include "kiosk/render_command.h"
-#include "kiosk/texture_levels.h"
+#include "levels/output_gains.h"
 #include "surface/image_surface.h"
 #include "surface/texture_set.h"
 #include "synth/scene.h"
+#include "tools/builtin_profiles.h"
+#include "tools/render_command.h"
 
 namespace {
 
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
     t.name = t.loaded.file.name;
     t.material = kiosk::FindMaterial(t.loaded.file.material, dirs).params;
     t.output = kiosk::KioskOutputParams(config, t.loaded.file.gains);
-    t.relief_m = kiosk::ReliefM(*t.loaded.field);
+    t.relief_m = surface::ReliefM(*t.loaded.field);
     textures.push_back(std::move(t));
   }
 
@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
         "Written by `visitor_bench"
      << (opt.quick ? " --quick" : "") << "` (tests/bench/visitor_bench.cpp); do not edit. "
      << opt.strokes << " strokes from seed " << opt.seed
-     << " (kiosk/texture_levels.h VisitorPopulation, the population of `population_levels`: "
+     << " (calibration/texture_levels.h VisitorPopulation, the population of `population_levels`: "
         "scrape / rub / roll, 20–400 mm/s, pressure 0.1–0.9, 0.3–1.5 s, random places and "
         "directions), each played on each kiosk texture (its picture-derived height field, its "
         "material, the kiosk's output gains) with the kiosk's pen mapping at 200 Hz, 48 kHz, "

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "kiosk/material_file.h"
+#include "files/material_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

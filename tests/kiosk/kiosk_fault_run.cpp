@@ -24,8 +24,8 @@
 #include <functional>
 #include <thread>
 
-#include "kiosk/counters_file.h"
-#include "kiosk/kiosk_config.h"
+#include "files/counters_file.h"
+#include "files/kiosk_config.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk_test_fakes.h"

@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/counters_file.h"
+#include "files/counters_file.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"

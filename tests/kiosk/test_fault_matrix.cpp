@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/counters_file.h"
-#include "kiosk/kiosk_config.h"
+#include "files/counters_file.h"
+#include "files/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
 #include "fault_matrix_support.h"
 #include "platform/log/log.h"

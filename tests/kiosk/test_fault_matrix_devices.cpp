@@ -29,7 +29,7 @@
 #include <thread>
 #include <vector>
 
-#include "kiosk/counters_file.h"
+#include "files/counters_file.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "kiosk/builtin_profiles.h"
+#include "tools/builtin_profiles.h"
 #include "kiosk/gesture.h"
 #include "support/temp_dir.h"
 

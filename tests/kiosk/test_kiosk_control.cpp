@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "kiosk/counters_file.h"
+#include "files/counters_file.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
@@ -179,4 +179,45 @@ TEST_CASE(
   CHECK(board.Get("pen").state == platform::DeviceState::kOk);
   REQUIRE(seen.size() == 1);
   CHECK(seen[0].time_ns == 1001 * kMs);
+}
+
+TEST_CASE(
+    "a corrupt configuration at start is one journal line and a staff status naming file, "
+    "line, key and the fallback in use",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\n");
+  const auto last_good = dir.file("last-good.toml");
+  sas::platform::Logger log;
+  log.SetEchoToStderr(false);
+  sas::platform::DeviceStatusBoard board(log);
+
+  // Garbled by an editor: a syntax error on line 3. The copy from the good start is used.
+  REQUIRE(sas::kiosk::LoadKioskConfigWithFallback(path, last_good).problem.empty());
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 12\nhaptic_gain_db = = 3\n");
+  const auto loaded = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  sas::kiosk::ReportConfig(board, loaded);
+  const auto status = board.Get("config");
+  CHECK(status.state == sas::platform::DeviceState::kMissing);
+  CHECK_THAT(status.message, Catch::StartsWith("rejected: " + path + ":3:") &&
+                                 Catch::Contains("(using the last good configuration)"));
+  REQUIRE(log.Recent().size() == 1);
+  CHECK_THAT(log.Recent()[0].Text(),
+             Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
+  CHECK_THAT(
+      sas::kiosk::ConfigStatusLine(path, loaded),
+      Catch::StartsWith("Config: " + path + " bad, using the last good one: " + path + ":3:"));
+
+  // No last good copy: the built-in defaults, and it says so, key included.
+  sas::platform::DeviceStatusBoard fresh(log);
+  dir.Write("kiosk.toml", "[session]\nidle_timeout_s = \"soon\"\n");
+  const auto defaults = sas::kiosk::LoadKioskConfigWithFallback(path, dir.file("none.toml"));
+  CHECK(defaults.source == sas::kiosk::ConfigLoadResult::Source::kDefaults);
+  CHECK(defaults.config.idle_timeout_s == sas::kiosk::KioskConfig{}.idle_timeout_s);
+  sas::kiosk::ReportConfig(fresh, defaults);
+  CHECK_THAT(fresh.Get("config").message,
+             Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
+                 Catch::EndsWith("(using the built-in defaults)"));
+  CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
+             Catch::Contains(" not used, defaults: " + path + ":2: session.idle_timeout_s: "));
 }

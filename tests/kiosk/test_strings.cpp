@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "files/strings.h"
 #include "kiosk/kiosk_engine.h"
-#include "kiosk/strings.h"
 #include "sas/version.h"
 #include "support/temp_dir.h"
 

@@ -1,0 +1,31 @@
+// Configuration + texture + ambient gains -> synth::OutputParams (see output_gains.h).
+#include "levels/output_gains.h"
+
+#include <cmath>
+
+namespace sas::kiosk {
+namespace {
+
+double FromDb(double db) {
+  return std::pow(10.0, db / 20.0);
+}
+
+}  // namespace
+
+synth::OutputParams KioskOutputParams(const KioskConfig& config,
+                                      const surface::TextureGains& texture, double ambient_gain_db,
+                                      bool low_vibration) {
+  synth::OutputParams p;
+  p.sound_gain = FromDb(config.sound_gain_db + texture.sound_gain_db + ambient_gain_db);
+  p.haptic_gain = FromDb(config.haptic_gain_db + texture.haptic_gain_db);
+  p.haptic_ceiling = FromDb(config.haptic_ceiling_db);
+  p.low_vibration_gain = FromDb(-config.low_vibration_db);
+  p.low_vibration = low_vibration;
+  if (config.stroke_cap_lu > 0.0) {
+    p.sound_level_cap = FromDb(kCalibratedSoundLufs + config.sound_gain_db + ambient_gain_db +
+                               config.stroke_cap_lu);
+  }
+  return p;
+}
+
+}  // namespace sas::kiosk

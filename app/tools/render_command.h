@@ -1,0 +1,86 @@
+#pragma once
+// The offline renderer behind `sketch-a-scratch render`: a material (TOML file found by name), a
+// surface (built-in profile, kiosk texture file or picture) and a gesture (built-in or CSV) go
+// through the same synth::Scene the kiosk plays live, block by block with commands placed on their
+// exact frames, and come out as a 2-channel WAV (ch 1 sound, ch 2 haptic) plus a one-line summary.
+//
+//   sketch-a-scratch render --material wood --profile grating --gesture "slow stroke"
+//                           --out out.wav [--fs 48000] [--tail-s 2] [--materials-dir DIR]
+//                           [--format float|pcm24] [--style auto|scrape|rub|roll]
+//                           [--gain-db 0] [--haptic-gain-db 0] [--normalize] [--sweep-mps V]
+//
+// Materials are looked up by name in, in order: --materials-dir, $SAS_DATA_DIR/materials, the
+// source tree's textures/materials, <install prefix>/share/sketch-a-scratch/materials; the first
+// directory holding <name>.toml wins. Every problem is a RenderError (or one of the loaders'
+// errors) with a message naming the file and, for data files, line and key.
+
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "files/material_file.h"
+#include "surface/wav_writer.h"
+#include "synth/probe_command.h"
+
+namespace sas::kiosk {
+
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RenderOptions {
+  std::string material;  // empty: the texture file's material (--profile X.toml), else "wood"
+  std::string profile = "grating";      // built-in name, texture.toml or picture file
+  std::string gesture = "slow stroke";  // built-in name or CSV file
+  // The passive mode at a set velocity (m/s): with gesture "passive sweep", replaces its 5 cm/s.
+  std::optional<double> sweep_mps;
+  std::string out_path;       // required
+  std::string materials_dir;  // optional, searched first
+  int sample_rate_hz = 48000;
+  double tail_s = 2.0;  // rendered after the pen is lifted
+  surface::WavFormat format = surface::WavFormat::kFloat32;
+  std::optional<synth::ProbeStyle> style;  // empty: by probe width (pen tilt)
+  double sound_gain_db = 0.0;
+  double haptic_gain_db = 0.0;
+  // Scale each channel after rendering so its peak is at -1 dBFS (for listening to quiet
+  // renders; the synth's own scale is 1 m/s pickup velocity = full scale).
+  bool normalize = false;
+  int block_frames = 256;  // the scene's block size (output does not depend on it)
+};
+
+struct ChannelStats {
+  double peak = 0.0;  // max |sample|
+  double rms = 0.0;
+};
+
+struct RenderSummary {
+  std::string material_file;
+  double duration_s = 0.0;
+  double gesture_s = 0.0;
+  ChannelStats channels[2];
+  double normalize_gain[2] = {1.0, 1.0};  // applied by --normalize (linear)
+  double tail_end_peak = 0.0;             // max |sample| over both channels in the last 100 ms
+  double compute_s = 0.0;                 // wall time spent in Scene::Process
+  double realtime_factor = 0.0;           // compute_s / duration_s (< 1: faster than real time)
+  std::vector<std::string> warnings;
+};
+
+// Renders and writes options.out_path. Throws on any problem (nothing is written then).
+RenderSummary Render(const RenderOptions& options);
+// Renders into `audio` (2 interleaved channels: sound, haptic) without writing anything;
+// options.out_path is ignored. Throws on any problem.
+RenderSummary RenderToMemory(const RenderOptions& options, std::vector<float>& audio);
+// "out.wav: 4.10 s, wood on grating, slow stroke | ch1 peak -6.0 dBFS rms -21.3 dBFS | ch2 ..."
+std::string FormatSummary(const RenderOptions& options, const RenderSummary& summary);
+
+// Parses `args` (everything after "render") with the shared parser (command_line.h). Throws
+// RenderError naming the option on bad args.
+RenderOptions ParseRenderArgs(const std::vector<std::string>& args);
+// The whole subcommand: parse, render, print the summary to `out`, errors to `err`. Returns the
+// process exit code (0 ok, 1 render failed, 2 bad command line). Never throws.
+int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::FILE* err);
+
+}  // namespace sas::kiosk

@@ -1,0 +1,162 @@
+// How the sound answers the hand (calibration/gesture_response.h): the grid of 4 kiosk textures and
+// the voice surface × 3 styles × 3 speeds × 2 pressures, through the kiosk's synth, and the
+// relations a blind visitor relies on (faster = louder and brighter, firmer = louder, styles
+// distinct).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "calibration/gesture_response.h"
+#include "sas/version.h"
+
+namespace {
+
+using sas::kiosk::CheckResponseGrid;
+using sas::kiosk::ResponseCell;
+using sas::synth::ProbeStyle;
+
+// The relations today's materials do not meet, measured by `gesture_response` and listed with
+// their figures in docs/gesture-response.md. The models and materials are to be changed until
+// this list is empty; a change that breaks a relation not listed here fails the test, and one
+// that meets a listed relation should delete its line.
+const std::set<std::string>& KnownOpen() {
+  static const std::set<std::string> keys = {
+      "bubble wrap/speed-centroid/rub/p0.8",
+      "bubble wrap/pressure-sound/rub/30mm/s",
+      "bubble wrap/pressure-sound/rub/100mm/s",
+      "bubble wrap/pressure-sound/rub/300mm/s",
+      "bubble wrap/style-spectra/rub-roll/300mm/s,p0.2",
+      "broken glass/speed-centroid/scrape/p0.2",
+      "broken glass/speed-centroid/scrape/p0.8",
+      "broken glass/pressure-sound/scrape/30mm/s",
+      "broken glass/pressure-sound/scrape/100mm/s",
+      "broken glass/speed-centroid/rub/p0.2",
+      "broken glass/speed-centroid/rub/p0.8",
+      "broken glass/pressure-sound/rub/100mm/s",
+      "broken glass/pressure-sound/rub/300mm/s",
+      "broken glass/speed-centroid/roll/p0.2",
+      "broken glass/speed-centroid/roll/p0.8",
+      "broken glass/pressure-sound/roll/30mm/s",
+      "broken glass/style-spectra/scrape-roll/300mm/s,p0.8",
+      "wooden board/speed-centroid/rub/p0.8",
+      "wooden board/speed-centroid/roll/p0.8",
+      "wooden board/style-spectra/scrape-rub/30mm/s,p0.2",
+      "wooden board/style-spectra/scrape-rub/30mm/s,p0.8",
+      "cracked ground/pressure-sound/rub/300mm/s",
+      "cracked ground/style-spectra/scrape-rub/30mm/s,p0.2",
+      "cracked ground/style-spectra/scrape-rub/30mm/s,p0.8",
+      "voice/pressure-sound/scrape/100mm/s",
+      "voice/pressure-sound/scrape/300mm/s",
+      "voice/pressure-sound/rub/30mm/s",
+      "voice/pressure-sound/rub/100mm/s",
+      "voice/pressure-sound/rub/300mm/s",
+      "voice/speed-centroid/roll/p0.2",
+      "voice/speed-centroid/roll/p0.8",
+  };
+  return keys;
+}
+
+// A grid whose every relation holds by construction: level +8 dB and centroid x1.5 from the slow
+// to the fast speed, +4 dB from light to firm, and three styles with clearly different spectra.
+std::vector<ResponseCell> GoodGrid() {
+  std::vector<ResponseCell> grid;
+  int style_index = 0;
+  for (const ProbeStyle style : sas::kiosk::kResponseStyles) {
+    for (std::size_t s = 0; s < sas::kiosk::kResponseSpeedsMmS.size(); ++s) {
+      for (std::size_t p = 0; p < sas::kiosk::kResponsePressures.size(); ++p) {
+        ResponseCell cell;
+        cell.stroke = {style, sas::kiosk::kResponseSpeedsMmS[s], sas::kiosk::kResponsePressures[p]};
+        cell.response.sound_db =
+            -60.0 + 4.0 * static_cast<double>(s) + 4.0 * static_cast<double>(p);
+        cell.response.haptic_db = cell.response.sound_db;
+        cell.response.centroid_hz = 500.0 * (1.0 + 0.25 * static_cast<double>(s));
+        for (std::size_t b = 0; b < cell.response.band_db.size(); ++b) {
+          // Each style tilts its spectrum its own way: 0, +0.6, -0.6 dB per band.
+          const double tilt = style_index == 0 ? 0.0 : (style_index == 1 ? 0.6 : -0.6);
+          cell.response.band_db[b] = tilt * (static_cast<double>(b) - 10.0);
+        }
+        grid.push_back(cell);
+      }
+    }
+    ++style_index;
+  }
+  return grid;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "gesture response: the checker passes a grid that meets every relation and names each "
+    "one that a grid breaks",
+    "[kiosk][gesture]") {
+  std::vector<ResponseCell> grid = GoodGrid();
+  CHECK(CheckResponseGrid("test", grid).empty());
+  // Break one relation of each kind.
+  for (auto& c : grid) {
+    if (c.stroke.style == ProbeStyle::kRub && c.stroke.speed_mm_s == 300.0 &&
+        c.stroke.pressure == 0.2) {
+      c.response.centroid_hz = 560.0;  // x1.12 only
+    }
+    if (c.stroke.style == ProbeStyle::kRoll && c.stroke.speed_mm_s == 100.0 &&
+        c.stroke.pressure == 0.8) {
+      c.response.sound_db -= 3.0;  // firm only +1 dB above light
+    }
+    if (c.stroke.style == ProbeStyle::kScrape && c.stroke.speed_mm_s == 30.0 &&
+        c.stroke.pressure == 0.8) {
+      c.response.haptic_db = 0.0;  // the vibration falls with speed
+    }
+  }
+  std::set<std::string> keys;
+  for (const auto& f : CheckResponseGrid("test", grid)) keys.insert(f.key);
+  CHECK(keys == std::set<std::string>{"test/speed-centroid/rub/p0.2",
+                                      "test/pressure-sound/roll/100mm/s",
+                                      "test/speed-haptic/scrape/p0.8"});
+  // Two styles with the same spectrum shape are not distinct.
+  for (auto& c : grid) {
+    if (c.stroke.style == ProbeStyle::kRoll) {
+      for (std::size_t b = 0; b < c.response.band_db.size(); ++b) {
+        c.response.band_db[b] = 0.1 * (static_cast<double>(b) - 10.0);
+      }
+    }
+  }
+  int style_failures = 0;
+  for (const auto& f : CheckResponseGrid("test", grid)) {
+    if (f.key.find("style-spectra/scrape-roll/") != std::string::npos) ++style_failures;
+  }
+  CHECK(style_failures == 6);  // every speed and pressure
+}
+
+TEST_CASE(
+    "gesture response: on the four kiosk textures and the voice surface, no relation "
+    "beyond the known open ones fails (speed 30 -> 300 mm/s gives +6 dB, x1.3 centroid and "
+    "more vibration, pressure 0.2 -> 0.8 gives +3 dB, styles 3 dB apart)",
+    "[kiosk][gesture]") {
+  const auto surfaces = sas::kiosk::LoadResponseSurfaces(
+      (std::filesystem::path(sas::kSourceDir) / "textures").string());
+  REQUIRE(surfaces.size() == 5);
+  int holding = 0;
+  for (const auto& surface : surfaces) {
+    const std::vector<ResponseCell> grid = sas::kiosk::MeasureResponseGrid(surface);
+    REQUIRE(grid.size() == 18);
+    // Every stroke was heard: the measurement itself is not silent.
+    for (const auto& c : grid) {
+      INFO(surface.name << " " << sas::synth::ProbeStyleName(c.stroke.style) << " "
+                        << c.stroke.speed_mm_s << " mm/s p " << c.stroke.pressure);
+      CHECK(c.response.sound_db > -140.0);
+      CHECK(c.response.centroid_hz > 20.0);
+    }
+    const auto failures = CheckResponseGrid(surface.name, grid);
+    holding += sas::kiosk::ResponseRelationCount() - static_cast<int>(failures.size());
+    for (const auto& f : failures) {
+      INFO(f.text);
+      CHECK(KnownOpen().count(f.key) == 1);
+    }
+  }
+  WARN(holding << " of " << 5 * sas::kiosk::ResponseRelationCount()
+               << " relations hold; known open: " << KnownOpen().size());
+  CHECK(holding + static_cast<int>(KnownOpen().size()) >= 5 * sas::kiosk::ResponseRelationCount());
+}
