@@ -50,7 +50,7 @@ std::vector<double> KWeightedLoudnessDb(std::span<const float> samples, double s
 
   // Each window as the library sees it: its length in whole milliseconds (rounded, but never
   // reaching back before the first frame, where the ring buffer holds zeros), read in pieces of
-  // at most kPieceMs ending `ms_before_to` before its end.
+  // at most kPieceMs back to back from its end.
   struct Piece {
     std::size_t window = 0, end = 0;
     unsigned long ms = 0;
