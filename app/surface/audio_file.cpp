@@ -1,16 +1,18 @@
-// Audio file reading with libsndfile (see audio_file.h). The resampler is a direct-form windowed
-// sinc (J. O. Smith, "Digital Audio Resampling", bandlimited interpolation): for each output
-// sample, sum the input under a sinc scaled to min(fs_in, fs_out)/2, Blackman-windowed over
-// ±kZeroCrossings lobes. Cost is O(out * taps), fine for clips of seconds to minutes at load time.
+// Audio file reading with libsndfile (see audio_file.h). Resampling is libsoxr's one-shot
+// converter at its "high quality" recipe (linear phase, pass band to 91% of the lower Nyquist,
+// stop band from it, 20-bit precision, delay compensated): measured against the Blackman-windowed
+// sinc it replaces, it rejects aliases far better and runs about 15 times faster (figures in
+// docs/engineering.md).
 #include "surface/audio_file.h"
 
 #include <sndfile.h>
+#include <soxr.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <numbers>
+#include <stdexcept>
 
 #include "surface/image_loader.h"  // LoadError
 
@@ -25,59 +27,20 @@ struct SndfileCloser {
   void operator()(SNDFILE* file) const { sf_close(file); }
 };
 
-constexpr int kZeroCrossings = 32;
-
-// The windowed sinc, tabulated once at kTableSteps points per lobe and linearly interpolated:
-// one table read per tap instead of three transcendental calls.
-constexpr int kTableSteps = 512;
-
-const std::vector<double>& KernelTable() {
-  static const std::vector<double> table = [] {
-    std::vector<double> t(static_cast<std::size_t>(kZeroCrossings * kTableSteps + 2), 0.0);
-    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
-      const double x = static_cast<double>(i) / kTableSteps;  // lobes from the centre, >= 0
-      if (x > kZeroCrossings) break;
-      const double sinc = x == 0.0 ? 1.0 : std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
-      const double w_pos = (x / kZeroCrossings + 1.0) * 0.5;  // Blackman over [-Z, Z]
-      const double window = 0.42 - 0.5 * std::cos(2.0 * std::numbers::pi * w_pos) +
-                            0.08 * std::cos(4.0 * std::numbers::pi * w_pos);
-      t[i] = sinc * window;
-    }
-    return t;
-  }();
-  return table;
-}
-
 }  // namespace
 
 std::vector<float> Resample(const std::vector<float>& in, double from_hz, double to_hz) {
   if (in.empty() || from_hz == to_hz) return in;
-  const std::vector<double>& table = KernelTable();
-  const double ratio = to_hz / from_hz;
-  const auto out_count =
-      static_cast<std::size_t>(std::floor(static_cast<double>(in.size()) * ratio));
-  std::vector<float> out(out_count);
-  // Cut-off at the lower of the two Nyquist frequencies, expressed in input samples.
-  const double bandwidth = std::min(1.0, ratio);
-  const double half_width = kZeroCrossings / bandwidth;  // in input samples
-  const auto n_in = static_cast<std::ptrdiff_t>(in.size());
-  for (std::size_t i = 0; i < out_count; ++i) {
-    const double centre = static_cast<double>(i) / ratio;
-    const auto first =
-        std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>(std::ceil(centre - half_width)));
-    const auto last = std::min<std::ptrdiff_t>(
-        n_in - 1, static_cast<std::ptrdiff_t>(std::floor(centre + half_width)));
-    double acc = 0.0;
-    for (std::ptrdiff_t k = first; k <= last; ++k) {
-      const double pos = std::fabs(static_cast<double>(k) - centre) * bandwidth * kTableSteps;
-      const auto idx = static_cast<std::size_t>(pos);
-      if (idx + 1 >= table.size()) continue;
-      const double frac = pos - static_cast<double>(idx);
-      const double kernel = table[idx] + frac * (table[idx + 1] - table[idx]);
-      acc += static_cast<double>(in[static_cast<std::size_t>(k)]) * kernel;
-    }
-    out[i] = static_cast<float>(acc * bandwidth);
-  }
+  std::vector<float> out(
+      static_cast<std::size_t>(std::floor(static_cast<double>(in.size()) * to_hz / from_hz)));
+  if (out.empty()) return out;
+  const soxr_io_spec_t io = soxr_io_spec(SOXR_FLOAT32_I, SOXR_FLOAT32_I);
+  const soxr_quality_spec_t quality = soxr_quality_spec(SOXR_HQ, 0);
+  std::size_t written = 0;
+  const soxr_error_t error = soxr_oneshot(from_hz, to_hz, 1, in.data(), in.size(), nullptr,
+                                          out.data(), out.size(), &written, &io, &quality, nullptr);
+  if (error != nullptr) throw std::runtime_error(std::string("libsoxr: ") + error);
+  out.resize(written);
   return out;
 }
 

@@ -2,7 +2,7 @@
 // Reading recorded sound and vibration scans (WAV, FLAC, OGG/Vorbis through libsndfile) for the
 // surface pipeline: a voice recording becomes an image (paper §4, figure 3) and a scan becomes a
 // profile. Everything is brought to one shape before anyone looks at it: mono (mean of the
-// channels), float in [-1, 1], at `target_rate_hz` (windowed-sinc resampling, below).
+// channels), float in [-1, 1], at `target_rate_hz` (band-limited resampling, below).
 //
 // Limits are checked from the file's header before any sample is read, so a 2-hour file or a
 // 64-channel file is refused without reading it. Handling of the awkward cases:
@@ -50,8 +50,9 @@ struct AudioClip {
 // Reads a WAV/FLAC/OGG file (anything libsndfile opens). Throws LoadError naming the file.
 AudioClip ReadAudioFile(const std::string& path, const AudioReadLimits& limits = {});
 
-// Band-limited resampling with a Blackman-windowed sinc (cut-off at the lower Nyquist, 32 zero
-// crossings each side). Exposed for tests and for callers that already hold samples.
+// Band-limited resampling (libsoxr, high quality: flat to 91% of the lower Nyquist, aliases and
+// images below -130 dB), floor(n * to_hz / from_hz) samples out, no delay. Exposed for tests and
+// for callers that already hold samples.
 std::vector<float> Resample(const std::vector<float>& in, double from_hz, double to_hz);
 
 // Fills in peak / silent / clipped_fraction from `samples` (used by ReadAudioFile).

@@ -1,5 +1,11 @@
-// Owned height field with its summed-area table (see height_field.h).
+// Owned height field with its summed-area table (see height_field.h). OpenCV's cv::integral builds
+// the table (float heights, double sums) straight into the field's own memory: it accumulates each
+// row in double and adds the row above, the same order a hand-written loop would, so the sums are
+// exact to the last bit of that order.
 #include "surface/height_field.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <stdexcept>
@@ -17,14 +23,15 @@ HeightField::HeightField(int width, int height, double pitch_m, std::pmr::vector
     throw std::invalid_argument("HeightField: size does not match width * height");
   }
   if (!(pitch_m > 0.0)) throw std::invalid_argument("HeightField: pitch must be positive");
-  const auto stride = static_cast<std::size_t>(width) + 1;
-  summed_area_.assign(stride * (static_cast<std::size_t>(height) + 1), 0.0);
-  for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) {
-    double row_sum = 0.0;
-    for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x) {
-      row_sum += heights_[y * static_cast<std::size_t>(width) + x];
-      summed_area_[(y + 1) * stride + x + 1] = summed_area_[y * stride + x + 1] + row_sum;
-    }
+  summed_area_.assign((static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1),
+                      0.0);
+  // Headers over our buffers: a destination of the right size and type is written in place, so the
+  // table stays in the heights' memory resource (never in OpenCV's allocator).
+  const cv::Mat heights(height, width, CV_32F, heights_.data());
+  cv::Mat table(height + 1, width + 1, CV_64F, summed_area_.data());
+  cv::integral(heights, table, CV_64F);
+  if (table.data != reinterpret_cast<const uchar*>(summed_area_.data())) {
+    throw std::logic_error("HeightField: cv::integral reallocated the summed-area table");
   }
 }
 

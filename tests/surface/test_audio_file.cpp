@@ -94,6 +94,23 @@ TEST_CASE("an 8 kHz recording is resampled to 48 kHz keeping pitch, level and le
     REQUIRE(std::fabs(clip.samples[i]) < 0.62f);
 }
 
+TEST_CASE(
+    "resampling keeps tones below the lower Nyquist at their level and rejects tones above it by "
+    "more than 100 dB",
+    "[surface]") {
+  // 48 -> 44.1 kHz: 1 kHz and 18 kHz pass (the resampler's pass band ends at 91% of 22.05 kHz);
+  // 23 kHz has no place below 22.05 kHz and would alias to 21.1 kHz.
+  for (const double hz : {1000.0, 18000.0}) {
+    const auto out = Resample(Tone(48000, hz, 1.0, 0.5), 48000.0, 44100.0);
+    REQUIRE(out.size() == 44100);
+    INFO(hz << " Hz");
+    CHECK(20.0 * std::log10(Rms(out, 11025, 33075) / (0.5 / std::sqrt(2.0))) ==
+          Approx(0.0).margin(0.01));
+  }
+  const auto aliased = Resample(Tone(48000, 23000.0, 1.0, 0.5), 48000.0, 44100.0);
+  CHECK(20.0 * std::log10(Rms(aliased, 11025, 33075) / (0.5 / std::sqrt(2.0))) < -100.0);
+}
+
 TEST_CASE("an 8-channel file is mixed down to the mean of its channels and 9 channels are refused",
           "[surface]") {
   sas::test::TempDir dir;

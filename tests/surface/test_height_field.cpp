@@ -31,6 +31,21 @@ TEST_CASE("box means from the summed-area table equal brute-force sums over rand
   CHECK(view.height_m[5] == heights[5]);
 }
 
+TEST_CASE(
+    "the summed-area table of a field of ones holds x * y exactly, with a zero first row and column",
+    "[surface]") {
+  const int width = 1920, rows = 5;  // a picture's width, a few rows: small integers sum exactly
+  const sas::surface::HeightField field(width, rows, 1e-4,
+                                        std::pmr::vector<float>(std::size_t{width} * rows, 1.0f));
+  const double* table = field.View().summed_area;
+  for (int y = 0; y <= rows; ++y) {
+    for (int x = 0; x <= width; ++x) {
+      REQUIRE(table[static_cast<std::size_t>(y) * (width + 1) + static_cast<std::size_t>(x)] ==
+              static_cast<double>(x) * y);
+    }
+  }
+}
+
 TEST_CASE("a height field whose size does not match its data is refused", "[surface]") {
   CHECK_THROWS_AS(sas::surface::HeightField(4, 4, 1e-4, std::pmr::vector<float>(15)),
                   std::invalid_argument);

@@ -1,16 +1,17 @@
-// Loudness measures (surface/loudness.h) against ITU-R BS.1770-4: its 48 kHz K-weighting
-// coefficient table and its calibration statement (a 0 dBFS 1 kHz sine in one channel reads
-// -3.01 LKFS), plus the RMS measure on signals whose RMS is known in closed form.
+// Loudness measures (surface/loudness.h) against ITU-R BS.1770-4: the response of its 48 kHz
+// K-weighting coefficient table and its calibration statement (a 0 dBFS 1 kHz sine in one channel
+// reads -3.01 LKFS), plus the RMS measure on signals whose RMS is known in closed form.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <vector>
 
 #include "surface/loudness.h"
 
 using sas::surface::KWeightedLoudnessDb;
-using sas::surface::KWeightingFilters;
 using sas::surface::RmsDb;
 
 namespace {
@@ -24,21 +25,57 @@ std::vector<float> Sine(double frequency_hz, double amplitude, double fs, double
   return x;
 }
 
+// The gain at `hz` of BS.1770-4's K-weighting at 48 kHz (Annex 1, tables 1 and 2: the
+// pre-filter shelf and the RLB high-pass biquads), from the standard's coefficients.
+double KWeightingGainDb48k(double hz) {
+  const std::array<std::array<double, 5>, 2> table = {{
+      {1.53512485958697, -2.69169618940638, 1.19839281085285, -1.69065929318241,
+       0.73248077421585},
+      {1.0, -2.0, 1.0, -1.99004745483398, 0.99007225036621},
+  }};
+  const std::complex<double> z1 = std::polar(1.0, -2.0 * std::numbers::pi * hz / 48000.0);
+  std::complex<double> h = 1.0;
+  for (const auto& c : table)
+    h *= (c[0] + c[1] * z1 + c[2] * z1 * z1) / (1.0 + c[3] * z1 + c[4] * z1 * z1);
+  return 20.0 * std::log10(std::abs(h));
+}
+
+// BS.1770 loudness of a steady sine of `amplitude` at `hz` (48 kHz): mean square a^2 / 2 through
+// the K-weighting, plus -0.691 dB.
+double SineLoudness48k(double hz, double amplitude) {
+  return -0.691 + 10.0 * std::log10(amplitude * amplitude / 2.0) + KWeightingGainDb48k(hz);
+}
+
 }  // namespace
 
-TEST_CASE("K-weighting filters at 48 kHz equal the BS.1770 coefficient table", "[surface]") {
-  const auto f = KWeightingFilters(48000.0);
-  // ITU-R BS.1770-4, Annex 1, tables 1 and 2.
-  CHECK(f[0].b0 == Approx(1.53512485958697).epsilon(1e-9));
-  CHECK(f[0].b1 == Approx(-2.69169618940638).epsilon(1e-9));
-  CHECK(f[0].b2 == Approx(1.19839281085285).epsilon(1e-9));
-  CHECK(f[0].a1 == Approx(-1.69065929318241).epsilon(1e-9));
-  CHECK(f[0].a2 == Approx(0.73248077421585).epsilon(1e-9));
-  CHECK(f[1].b0 == 1.0);
-  CHECK(f[1].b1 == -2.0);
-  CHECK(f[1].b2 == 1.0);
-  CHECK(f[1].a1 == Approx(-1.99004745483398).epsilon(1e-9));
-  CHECK(f[1].a2 == Approx(0.99007225036621).epsilon(1e-9));
+TEST_CASE(
+    "a sine's loudness at 48 kHz follows the response of BS.1770's K-weighting coefficient table",
+    "[surface]") {
+  const double fs = 48000.0;
+  for (const double hz : {25.0, 60.0, 250.0, 1000.0, 2000.0, 5000.0, 12000.0}) {
+    const auto x = Sine(hz, 0.25, fs, 2.0);
+    // The last second: whole periods of every frequency above, after the filters have settled.
+    INFO(hz << " Hz");
+    CHECK(KWeightedLoudnessDb(x, fs, x.size() / 2, x.size()) ==
+          Approx(SineLoudness48k(hz, 0.25)).margin(0.005));
+  }
+}
+
+TEST_CASE("a window is measured over the whole milliseconds that end where it ends", "[surface]") {
+  // 494 frames of a 1 kHz sine at 48 kHz are 10.29 periods, whose mean square depends on the
+  // phase the window starts at (up to +-0.03 dB); the 10 ms ending at the same frame are whole
+  // periods and read the steady-sine loudness at every phase.
+  const double fs = 48000.0;
+  const auto x = Sine(1000.0, 0.5, fs, 1.0);
+  for (std::size_t to = 24000; to < 24048; to += 5) {
+    INFO("window ends at frame " << to);
+    CHECK(KWeightedLoudnessDb(x, fs, to - 494, to) ==
+          Approx(SineLoudness48k(1000.0, 0.5)).margin(1e-3));
+  }
+  // Shorter than half a millisecond, empty or past the end: nothing to measure.
+  CHECK(KWeightedLoudnessDb(x, fs, 1000, 1020) == sas::surface::kSilenceDb);
+  CHECK(KWeightedLoudnessDb(x, fs, 1000, 1000) == sas::surface::kSilenceDb);
+  CHECK(KWeightedLoudnessDb(x, fs, x.size(), x.size() + 480) == sas::surface::kSilenceDb);
 }
 
 TEST_CASE("a full-scale 1 kHz sine reads -3.01 LUFS at 48 and 44.1 kHz", "[surface]") {
@@ -108,7 +145,7 @@ TEST_CASE(
   CHECK(many[1] == Approx(-3.01 + 20.0 * std::log10(0.125)).margin(0.02));
   CHECK(many[2] == Approx(-3.01).margin(0.02));
   CHECK(many[3] == Approx(-3.01).margin(0.02));
-  // Overlapping or out-of-order windows are measured one by one, with the same answers.
+  // Overlapping or out-of-order windows give the same answers.
   const std::vector<sas::surface::FrameWindow> overlapping = {{26400, 48000}, {2400, 30000}};
   const auto apart = KWeightedLoudnessDb(stereo, fs, overlapping, 2);
   REQUIRE(apart.size() == 2);
