@@ -1,5 +1,5 @@
-// The kiosk engine (see kiosk_engine.h): textures, scenes, session, voice slot and counters, the
-// pen -> ProbeCommand mapping and the audio callback's render.
+// The kiosk engine (see kiosk_engine.h): textures, scenes, session, voice slot and counters and
+// the pen -> ProbeCommand mapping, on the control thread; the audio side is the player.
 #include "kiosk/kiosk_engine.h"
 
 #include <algorithm>
@@ -57,6 +57,10 @@ constexpr double kPassiveGainDb = -10.0;
 constexpr double kStrokeRampS = 0.02;
 constexpr double kLandingRampS = 0.001;
 constexpr double kLandingWindowS = 0.01;
+
+float StaffGain(double db) {
+  return static_cast<float>(std::pow(10.0, db / 20.0));
+}
 
 std::vector<std::string> DataDirs(const std::string& sub) {
   std::vector<std::string> dirs;
@@ -122,16 +126,7 @@ std::string FindCuesDir() {
 }
 
 KioskEngine::KioskEngine(KioskEngineOptions options)
-    : options_(std::move(options)),
-      session_(SessionConfig{}),
-      block_commands_(512),
-      scratch_a_(static_cast<std::size_t>(std::max(1, options_.max_block_frames)) * 2),
-      scratch_b_(scratch_a_.size()) {
-  speaker_ceiling_ = std::pow(10.0, options_.config.sound_ceiling_db / 20.0);
-  transducer_ceiling_ = std::pow(10.0, options_.config.haptic_ceiling_db / 20.0);
-  low_vibration_factor_ = std::pow(10.0, -options_.config.low_vibration_db / 20.0);
-  safety_.Prepare(options_.config.sample_rate_hz);
-  safety_.SetCeilings(speaker_ceiling_, transducer_ceiling_);
+    : options_(std::move(options)), session_(SessionConfig{}) {
   if (options_.texture_paths.empty()) options_.texture_paths = FindTextureFiles();
   const auto dirs = MaterialSearchDirs(options_.materials_dir);
   surface::TextureLoadOptions load;
@@ -224,25 +219,30 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   }
   LoadLanguages();
   LoadCues();
-  fade_len_ = std::max(
-      1, static_cast<int>(std::lround(options_.cross_fade_s * options_.config.sample_rate_hz)));
-  for (auto& slot : slots_) slot.scene.Init(options_.config.sample_rate_hz);
-  staff_smooth_ =
-      static_cast<float>(1.0 - std::exp(-1.0 / (0.02 * options_.config.sample_rate_hz)));
   if (!options_.staff_settings_path.empty()) {
     StaffSettingsLoad staff_load = LoadStaffSettings(options_.staff_settings_path);
     if (!staff_load.report.empty()) platform::DefaultLogger().Warn("staff", staff_load.report);
     staff_may_save_ = staff_load.may_save;
     staff_ = staff_load.settings;
-    // Where the ramps start: a restart comes up at the kept level, not fading into it.
-    staff_sound_now_ = static_cast<float>(std::pow(10.0, staff_.volume_db / 20.0));
-    staff_haptic_now_ = static_cast<float>(std::pow(10.0, staff_.vibration_db / 20.0));
-    ApplyStaffGains();
     low_vibration_ = staff_.low_vibration;
-    audio_low_vibration_.store(low_vibration_, std::memory_order_release);
   }
-  ShowSurface({false, default_texture_});
-  SetAudioRunning(false);  // no callback yet: take the first switch here
+  player::PlayerSetup setup;
+  setup.sample_rate_hz = options_.config.sample_rate_hz;
+  setup.max_block_frames = options_.max_block_frames;
+  setup.cross_fade_s = options_.cross_fade_s;
+  if (!options_.virtual_clock) setup.now_ns = &platform::MonotonicNowNs;
+  setup.speaker_ceiling = std::pow(10.0, options_.config.sound_ceiling_db / 20.0);
+  setup.transducer_ceiling = std::pow(10.0, options_.config.haptic_ceiling_db / 20.0);
+  setup.low_vibration_factor = std::pow(10.0, -options_.config.low_vibration_db / 20.0);
+  setup.low_vibration = low_vibration_;
+  // A restart comes up at the kept staff levels, not fading into them.
+  setup.staff_sound_gain = StaffGain(staff_.volume_db);
+  setup.staff_haptic_gain = StaffGain(staff_.vibration_db);
+  const auto prepare_first = [this](synth::Scene& scene) {
+    PrepareScene({false, default_texture_}, 0, scene);
+  };
+  player_ = std::make_unique<player::Player>(setup, std::move(clip_samples_), prepare_first);
+  audio_face_.player = &player_->audio();
 }
 
 KioskEngine::~KioskEngine() {
@@ -255,7 +255,8 @@ KioskEngine::~KioskEngine() {
 // ---------------------------------------------------------------------------- cues and clips
 
 int KioskEngine::AddClip(std::string name, std::vector<float> mono, int channel) {
-  clips_.push_back({std::move(mono), channel, std::move(name), {}});
+  clips_.push_back({std::move(name), {}});
+  clip_samples_.push_back({std::move(mono), channel});
   return static_cast<int>(clips_.size()) - 1;
 }
 
@@ -477,11 +478,7 @@ std::string KioskEngine::TextureName(int texture) const {
 }
 
 void KioskEngine::Play(int clip) {
-  Message message;
-  message.kind = Message::Kind::kPlay;
-  message.time_ns = last_now_ns_;
-  message.slot = clip;
-  Send(message);
+  player_->control().Play(last_now_ns_, clip);
 }
 
 void KioskEngine::PlayTestTone() {
@@ -491,11 +488,7 @@ void KioskEngine::PlayTransducerSweep() {
   Play(sweep_clip_);
 }
 
-// ---------------------------------------------------------------------------- control thread
-
-void KioskEngine::Send(const Message& message) {
-  if (!queue_.TryPush(message)) dropped_.fetch_add(1, std::memory_order_relaxed);
-}
+// ---------------------------------------------------------------------------- pen and session
 
 void KioskEngine::ScreenToField(double x_px, double y_px, double* fx, double* fy) const {
   // The picture covers the screen (picture_io.h ResizeToCover): uniform scale, centred crop.
@@ -590,7 +583,8 @@ void KioskEngine::OnPen(const PenInput& pen) {
     stroke_.Update(command.tip_down, recent, speed_mm_s, pressure, dt_s);
   }
   if (command.tip_down && !(have_last_pen_ && last_pen_.tip_down)) stroke_down_ns_ = pen.time_ns;
-  if (command.tip_down && requested_slot_ >= 0) {
+  auto& control = player_->control();
+  if (command.tip_down && control.current_slot() >= 0) {
     stroke_style_ = command.style;
     stroke_width_mm_ = command.width_mm;
     stroke_correction_ = CorrectionFor(stroke_texture_);
@@ -599,10 +593,10 @@ void KioskEngine::OnPen(const PenInput& pen) {
     // only rings out the last stroke's tail meanwhile. Then over the scene's 20 ms.
     const bool landing =
         static_cast<double>(pen.time_ns - stroke_down_ns_) * 1e-9 < kLandingWindowS;
-    slots_[static_cast<std::size_t>(requested_slot_)].scene.SetStrokeGains(
-        std::pow(10.0, stroke_correction_.sound_db / 20.0),
-        std::pow(10.0, stroke_correction_.haptic_db / 20.0),
-        landing ? kLandingRampS : kStrokeRampS);
+    control.scene(control.current_slot())
+        .SetStrokeGains(std::pow(10.0, stroke_correction_.sound_db / 20.0),
+                        std::pow(10.0, stroke_correction_.haptic_db / 20.0),
+                        landing ? kLandingRampS : kStrokeRampS);
   }
 
   // Bubble wrap: a hard enough press pops the bubble under the tip (a burst through the contact).
@@ -616,11 +610,7 @@ void KioskEngine::OnPen(const PenInput& pen) {
     }
   }
 
-  Message message;
-  message.kind = Message::Kind::kProbe;
-  message.time_ns = pen.time_ns;
-  message.command = command;
-  Send(message);
+  control.Probe(pen.time_ns, command);
   have_last_pen_ = true;
   last_pen_ = pen;
   last_fx_ = x_m;
@@ -658,13 +648,10 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
     if (passive_down_) {
       passive_down_ = false;
       passive_quiet_since_ns_ = now_ns;
-      Message lift;
-      lift.kind = Message::Kind::kProbe;
-      lift.time_ns = now_ns;
-      lift.command = last_passive_command_;
-      lift.command.tip_down = false;
-      lift.command.velocity_mps = 0.0;
-      Send(lift);
+      synth::ProbeCommand lift = last_passive_command_;
+      lift.tip_down = false;
+      lift.velocity_mps = 0.0;
+      player_->control().Probe(now_ns, lift);
     }
     return;
   }
@@ -699,11 +686,10 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
       command.direction_x = dx / distance;
       command.direction_y = dy / distance;
     }
-  } else if (requested_slot_ >= 0) {
+  } else if (const int slot = player_->control().current_slot(); slot >= 0) {
     // The burst's level: the texture's own, this far down (a visitor's touch sets it anew).
     const double gain = std::pow(10.0, kPassiveGainDb / 20.0);
-    slots_[static_cast<std::size_t>(requested_slot_)].scene.SetStrokeGains(gain, gain,
-                                                                           kStrokeRampS);
+    player_->control().scene(slot).SetStrokeGains(gain, gain, kStrokeRampS);
   }
   command.normal_force_n = kPassivePressure * mapping_.max_force_n;
   command.penetration_m = kPassivePressure * current_relief_m_;
@@ -716,18 +702,14 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
     command.width_mm = probe.width_mm;
     command.style = probe.style;
   }
-  Message message;
-  message.kind = Message::Kind::kProbe;
-  message.time_ns = now_ns;
-  message.command = command;
-  Send(message);
+  player_->control().Probe(now_ns, command);
   passive_down_ = true;
   passive_pen_ = pen;
   last_passive_command_ = command;
 }
 
 bool KioskEngine::AmbientListening() const {
-  if (audio_clip_playing_.load(std::memory_order_relaxed) || passive_down_) return false;
+  if (player_->control().clip_playing() || passive_down_) return false;
   return static_cast<double>(last_now_ns_ - passive_quiet_since_ns_) * 1e-9 >= kPassiveRingOutS;
 }
 
@@ -765,7 +747,7 @@ void KioskEngine::OnStaffActivity(std::int64_t now_ns) {
 std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
   last_now_ns_ = std::max(last_now_ns_, now_ns);
   const double now_s = static_cast<double>(now_ns) * 1e-9;
-  if (!audio_running_) SetAudioRunning(false);  // keep the pool moving without a device
+  auto& control = player_->control();
   // A pen held still sends few or no reports (a mouse none at all): the rest is timed here.
   if (rest_since_ns_ >= 0 && !rest_spoken_ && options_.config.describe_after_rest_s > 0.0 &&
       static_cast<double>(now_ns - rest_since_ns_) * 1e-9 >=
@@ -775,8 +757,8 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
   }
   session_.Tick(now_s);
   {
-    const std::uint64_t frames = audio_speaker_frames_.load(std::memory_order_acquire);
-    exposure_.Update(now_ns, audio_speaker_energy_.load(std::memory_order_relaxed), frames,
+    const player::SpeakerTotals speaker = control.speaker();
+    exposure_.Update(now_ns, speaker.energy, speaker.frames,
                      session_.mode() != SessionMode::kAttract);
   }
   std::vector<SessionAction> all;
@@ -788,7 +770,7 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
     all.insert(all.end(), actions.begin(), actions.end());
   }
   PassiveStroke(now_ns);
-  const bool acknowledged = switches_done_.load(std::memory_order_acquire) == switches_sent_;
+  const bool acknowledged = control.SwitchTaken();
   if (pending_surface_ && acknowledged) {
     const SurfaceChoice choice = *pending_surface_;
     pending_surface_.reset();
@@ -799,17 +781,13 @@ std::vector<SessionAction> KioskEngine::Tick(std::int64_t now_ns) {
     const SurfaceChoice choice = session_.surface();
     if (!choice.voice && choice.texture == bubble_texture_) ShowSurface(choice);
   }
-  if (release_idle_slots_ && acknowledged && !pending_surface_ &&
-      audio_fade_from_.load(std::memory_order_acquire) < 0) {
+  if (release_idle_slots_ && !pending_surface_ && control.Settled()) {
     // The idle reset has faded over to the default texture: the other slots' fields (the wiped
     // voice, flattened bubble wrap copies, the visit's textures) are let go, so an idle kiosk
     // holds the same memory after every visit and no voice lingers in a scene.
     release_idle_slots_ = false;
-    const int active = audio_active_.load(std::memory_order_acquire);
-    for (int slot = 0; slot < kSceneSlots; ++slot) {
-      if (slot != active && slot != requested_slot_) {
-        slots_[static_cast<std::size_t>(slot)].field.reset();
-      }
+    for (int slot = 0; slot < player::kSceneSlots; ++slot) {
+      if (!control.SlotInUse(slot)) slot_fields_[static_cast<std::size_t>(slot)].reset();
     }
   }
   if (!options_.counters_path.empty() && session_.counters() != saved_counters_ &&
@@ -930,19 +908,16 @@ void KioskEngine::WipeVoice() {
 }
 
 void KioskEngine::ShowSurface(const SurfaceChoice& choice) {
-  if (audio_running_ && switches_done_.load(std::memory_order_acquire) != switches_sent_) {
-    pending_surface_ = choice;  // the audio side has not taken the previous switch yet
+  auto& control = player_->control();
+  // One switch in flight at a time: the slot bookkeeping needs the audio side to have taken the
+  // last one (with the device stopped, that waits until it runs again).
+  if (!control.SwitchTaken()) {
+    pending_surface_ = choice;
     return;
   }
-  if (choice.voice) {
-    auto field = voice_.Recall(kVoiceSlot);
-    if (!field) return;
-    SwitchTo(std::move(field), voice_material_, {}, -1);
-    return;
-  }
-  auto& texture = textures_[static_cast<std::size_t>(choice.texture)];
-  auto field = texture.loaded.bubbles ? texture.loaded.bubbles->field() : texture.loaded.field;
-  SwitchTo(std::move(field), texture.material, texture.loaded.file.gains, choice.texture);
+  const int slot = control.FreeSlot();
+  if (slot < 0 || !PrepareScene(choice, slot, control.scene(slot))) return;
+  if (!control.Switch(last_now_ns_, slot)) pending_surface_ = choice;  // queue full: next Tick
 }
 
 StrokeCorrection KioskEngine::CorrectionFor(int texture) const {
@@ -951,61 +926,45 @@ StrokeCorrection KioskEngine::CorrectionFor(int texture) const {
                                   stroke_.pressure());
 }
 
-int KioskEngine::FreeSlot() const {
-  const int active = audio_active_.load(std::memory_order_acquire);
-  const int fading = audio_fade_from_.load(std::memory_order_acquire);
-  for (int slot = 0; slot < kSceneSlots; ++slot) {
-    if (slot != active && slot != fading && slot != requested_slot_) return slot;
+bool KioskEngine::PrepareScene(const SurfaceChoice& choice, int slot, synth::Scene& scene) {
+  std::shared_ptr<const surface::HeightField> field;
+  const Material* material = &voice_material_;
+  surface::TextureGains gains{};
+  int texture = -1;
+  if (choice.voice) {
+    field = voice_.Recall(kVoiceSlot);
+    if (!field) return false;
+  } else {
+    const auto& loaded = textures_[static_cast<std::size_t>(choice.texture)];
+    field = loaded.loaded.bubbles ? loaded.loaded.bubbles->field() : loaded.loaded.field;
+    material = &loaded.material;
+    gains = loaded.loaded.file.gains;
+    texture = choice.texture;
   }
-  return -1;  // cannot happen with 4 slots and at most 3 in use
-}
-
-void KioskEngine::SwitchTo(std::shared_ptr<const surface::HeightField> field,
-                           const Material& material, const surface::TextureGains& gains,
-                           int texture) {
-  const int slot = FreeSlot();
-  if (slot < 0) return;
-  auto& target = slots_[static_cast<std::size_t>(slot)];
   // Configuration + texture loudness-matching gains + the ambient gain, the transducer ceiling and
   // the staff's low-vibration mode: one builder for every path (output_gains.h).
   const synth::OutputParams output =
       KioskOutputParams(options_.config, gains, ambient_gain_db_, low_vibration_);
   ambient_gain_applied_db_ = ambient_gain_db_;
-  target.field = field;
+  auto& kept = slot_fields_[static_cast<std::size_t>(slot)];
+  kept = field;
   // The new scene starts at the correction for the last stroke (Prepare takes it at once).
   stroke_texture_ = texture;
   stroke_correction_ = CorrectionFor(texture);
-  target.scene.SetStrokeGains(std::pow(10.0, stroke_correction_.sound_db / 20.0),
-                              std::pow(10.0, stroke_correction_.haptic_db / 20.0));
+  scene.SetStrokeGains(std::pow(10.0, stroke_correction_.sound_db / 20.0),
+                       std::pow(10.0, stroke_correction_.haptic_db / 20.0));
   if (passive_down_) {
     const double gain = std::pow(10.0, kPassiveGainDb / 20.0);  // the passive stroke goes on
-    target.scene.SetStrokeGains(gain, gain);
+    scene.SetStrokeGains(gain, gain);
   }
-  target.scene.Prepare(material.params, output, target.field->View());
+  scene.Prepare(material->params, output, kept->View());
   current_field_ = std::move(field);
   current_relief_m_ = ReliefM(*current_field_);
-  Message message;
-  message.kind = Message::Kind::kSwitch;
-  message.time_ns = last_now_ns_;
-  message.slot = slot;
-  requested_slot_ = slot;
-  ++switches_sent_;
-  Send(message);
+  return true;
 }
 
 void KioskEngine::SetAudioRunning(bool running) {
-  audio_running_ = running;
-  if (running) return;
-  // No callback can run: consume the queue here so switches take effect and nothing piles up.
-  Message message;
-  while (queue_.TryPop(message)) {
-    if (message.kind == Message::Kind::kSwitch) {
-      ApplySwitchOnAudio(message.slot);
-      fade_from_ = -1;
-      audio_fade_from_.store(-1, std::memory_order_release);
-    }
-  }
-  playing_clip_ = -1;
+  player_->control().SetDeviceRunning(running, last_now_ns_);
 }
 
 void KioskEngine::SetLowVibration(bool on) {
@@ -1016,10 +975,7 @@ void KioskEngine::SetLowVibration(bool on) {
     staff_.low_vibration = on;
     SaveStaffSettings();
   }
-  for (auto& slot : slots_) slot.scene.SetLowVibration(on);
-  // The transducer's ceiling comes down too, so nothing mixed after the scenes (the staff sweep,
-  // a cue) can drive it harder than the mode allows.
-  audio_low_vibration_.store(on, std::memory_order_release);
+  player_->control().SetLowVibration(on);
 }
 
 void KioskEngine::StepVolume(int steps) {
@@ -1035,10 +991,7 @@ void KioskEngine::StepVibration(int steps) {
 }
 
 void KioskEngine::ApplyStaffGains() {
-  audio_staff_sound_.store(static_cast<float>(std::pow(10.0, staff_.volume_db / 20.0)),
-                           std::memory_order_relaxed);
-  audio_staff_haptic_.store(static_cast<float>(std::pow(10.0, staff_.vibration_db / 20.0)),
-                            std::memory_order_relaxed);
+  player_->control().SetStaffGains(StaffGain(staff_.volume_db), StaffGain(staff_.vibration_db));
 }
 
 void KioskEngine::SaveStaffSettings() {
@@ -1110,168 +1063,7 @@ bool KioskEngine::SaveCounters(std::string* error) const {
 }
 
 EngineAudioStats KioskEngine::audio_stats() const {
-  EngineAudioStats stats;
-  stats.pen_to_sample_last_ns = latency_last_ns_.load(std::memory_order_relaxed);
-  stats.pen_to_sample_max_ns = latency_max_ns_.load(std::memory_order_relaxed);
-  stats.commands = commands_done_.load(std::memory_order_relaxed);
-  stats.dropped_commands = dropped_.load(std::memory_order_relaxed);
-  stats.switches = switches_done_.load(std::memory_order_relaxed);
-  return stats;
-}
-
-// ---------------------------------------------------------------------------- audio thread
-
-void KioskEngine::ApplySwitchOnAudio(int slot) noexcept {
-  if (slot == active_) return;
-  if (active_ >= 0) {
-    fade_from_ = active_;
-    fade_pos_ = 0;
-    lift_fading_ = true;
-  }
-  active_ = slot;
-  audio_active_.store(active_, std::memory_order_release);
-  audio_fade_from_.store(fade_from_, std::memory_order_release);
-  switches_done_.fetch_add(1, std::memory_order_acq_rel);
-}
-
-void KioskEngine::Render(float* interleaved, int frames, int channels) noexcept {
-  const double fs_hz = options_.config.sample_rate_hz;
-  if (const bool low = audio_low_vibration_.load(std::memory_order_acquire);
-      low != safety_low_vibration_) {
-    safety_low_vibration_ = low;
-    safety_.SetCeilings(speaker_ceiling_,
-                        transducer_ceiling_ * (low ? low_vibration_factor_ : 1.0));
-  }
-  const std::int64_t start_ns =
-      options_.virtual_clock ? virtual_now_ns_ : platform::MonotonicNowNs();
-  const int max_chunk = static_cast<int>(scratch_a_.size() / 2);
-  for (int done = 0; done < frames; done += max_chunk) {
-    const int n = std::min(max_chunk, frames - done);
-    RenderChunk(interleaved + static_cast<std::ptrdiff_t>(done) * channels, n, channels,
-                start_ns + static_cast<std::int64_t>(done * 1e9 / fs_hz));
-  }
-  if (options_.virtual_clock) {
-    virtual_now_ns_ += static_cast<std::int64_t>(std::llround(frames * 1e9 / fs_hz));
-  }
-}
-
-void KioskEngine::RenderSegment(float* out, int channels, int begin, int end,
-                                int command_count) noexcept {
-  const int frames = end - begin;
-  if (frames <= 0) return;
-  float* a = scratch_a_.data();
-  float* b = scratch_b_.data();
-  if (active_ >= 0) {
-    slots_[static_cast<std::size_t>(active_)].scene.Process(block_commands_.data(), command_count,
-                                                            a, frames);
-  } else {
-    std::fill(a, a + 2 * frames, 0.0f);
-  }
-  if (fade_from_ >= 0) {
-    synth::ProbeCommand lift;
-    lift.tip_down = false;
-    auto& old = slots_[static_cast<std::size_t>(fade_from_)].scene;
-    const auto state = old.probe_state();
-    lift.x_m = state.x_m;
-    lift.y_m = state.y_m;
-    old.Process(&lift, lift_fading_ ? 1 : 0, b, frames);
-    lift_fading_ = false;
-    // Equal-power cross-fade: uncorrelated sounds keep their loudness through the switch.
-    constexpr double kHalfPi = 1.5707963267948966;
-    for (int i = 0; i < frames; ++i) {
-      const double p = std::min(1.0, static_cast<double>(fade_pos_ + i) / fade_len_);
-      const auto w_in = static_cast<float>(std::sin(kHalfPi * p));
-      const auto w_out = static_cast<float>(std::cos(kHalfPi * p));
-      a[2 * i] = a[2 * i] * w_in + b[2 * i] * w_out;
-      a[2 * i + 1] = a[2 * i + 1] * w_in + b[2 * i + 1] * w_out;
-    }
-    fade_pos_ += frames;
-    if (fade_pos_ >= fade_len_) {
-      fade_from_ = -1;
-      audio_fade_from_.store(-1, std::memory_order_release);
-    }
-  }
-  if (playing_clip_ >= 0) {
-    const auto& playing = clips_[static_cast<std::size_t>(playing_clip_)];
-    const auto& clip = playing.samples;
-    const std::size_t n = std::min(clip.size() - clip_pos_, static_cast<std::size_t>(frames));
-    float* to = a + playing.channel;
-    for (std::size_t i = 0; i < n; ++i) to[2 * i] += clip[clip_pos_ + i];
-    clip_pos_ += n;
-    if (clip_pos_ >= clip.size()) {
-      playing_clip_ = -1;
-      audio_clip_playing_.store(false, std::memory_order_relaxed);
-    }
-  }
-  // Everything is mixed: the staff's volume and vibration, then the safety stage as the last step
-  // (its ceilings hold for every source and every staff setting).
-  const float sound_target = audio_staff_sound_.load(std::memory_order_relaxed);
-  const float haptic_target = audio_staff_haptic_.load(std::memory_order_relaxed);
-  float sound_gain = staff_sound_now_, haptic_gain = staff_haptic_now_;
-  for (int i = 0; i < frames; ++i) {
-    sound_gain += (sound_target - sound_gain) * staff_smooth_;
-    haptic_gain += (haptic_target - haptic_gain) * staff_smooth_;
-    a[2 * i] *= sound_gain;
-    a[2 * i + 1] *= haptic_gain;
-    safety_.Process(a + 2 * static_cast<std::ptrdiff_t>(i));
-    speaker_energy_ += static_cast<double>(a[2 * i]) * a[2 * i];
-    float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;
-    for (int c = 0; c < channels; ++c) frame[c] = c < 2 ? a[2 * i + c] : 0.0f;
-  }
-  staff_sound_now_ = sound_gain;
-  staff_haptic_now_ = haptic_gain;
-  // The frames go out last, with release: a reader that sees them sees at least their energy.
-  speaker_frames_ += static_cast<std::uint64_t>(frames);
-  audio_speaker_energy_.store(speaker_energy_, std::memory_order_relaxed);
-  audio_speaker_frames_.store(speaker_frames_, std::memory_order_release);
-}
-
-void KioskEngine::RenderChunk(float* out, int frames, int channels,
-                              std::int64_t chunk_start_ns) noexcept {
-  const double fs_hz = options_.config.sample_rate_hz;
-  // A pen event from the last buffer period lands at the same place in this buffer: a constant
-  // delay of one buffer (no jitter from when the callback happens to run). Older ones at 0.
-  const double window_start_ns = static_cast<double>(chunk_start_ns) - frames * 1e9 / fs_hz;
-  int segment_start = 0;
-  int last_offset = 0;
-  int count = 0;
-  const int capacity = static_cast<int>(block_commands_.size());
-  Message message;
-  while (count < capacity && queue_.TryPop(message)) {
-    const auto raw = static_cast<long long>(
-        std::llround((static_cast<double>(message.time_ns) - window_start_ns) * fs_hz * 1e-9));
-    const int offset = static_cast<int>(std::clamp<long long>(raw, last_offset, frames - 1));
-    last_offset = offset;
-    if (message.kind == Message::Kind::kProbe) {
-      synth::ProbeCommand command = message.command;
-      command.frame_offset = static_cast<std::uint32_t>(offset - segment_start);
-      block_commands_[static_cast<std::size_t>(count++)] = command;
-      commands_done_.fetch_add(1, std::memory_order_relaxed);
-      // Due when it leaves the safety stage, kDelayFrames after the scene renders it.
-      const std::int64_t due_ns =
-          chunk_start_ns + static_cast<std::int64_t>(std::llround(
-                               (offset + synth::SafetyStage::kDelayFrames) * 1e9 / fs_hz));
-      const std::int64_t latency = due_ns - message.time_ns;
-      latency_last_ns_.store(latency, std::memory_order_relaxed);
-      if (latency > latency_max_ns_.load(std::memory_order_relaxed)) {
-        latency_max_ns_.store(latency, std::memory_order_relaxed);
-      }
-      continue;
-    }
-    if (offset > segment_start) {  // else the commands so far go to the scene after the switch
-      RenderSegment(out, channels, segment_start, offset, count);
-      count = 0;
-      segment_start = offset;
-    }
-    if (message.kind == Message::Kind::kSwitch) {
-      ApplySwitchOnAudio(message.slot);
-    } else if (message.slot >= 0 && message.slot < static_cast<int>(clips_.size())) {
-      playing_clip_ = message.slot;
-      clip_pos_ = 0;
-      audio_clip_playing_.store(true, std::memory_order_relaxed);
-    }
-  }
-  RenderSegment(out, channels, segment_start, frames, count);
+  return player_->control().stats();
 }
 
 }  // namespace sas::kiosk
