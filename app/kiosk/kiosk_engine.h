@@ -26,18 +26,19 @@
 #include <array>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "kiosk/data_dirs.h"
 #include "kiosk/exposure_meter.h"
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_config.h"
 #include "kiosk/material_file.h"
 #include "kiosk/session.h"
+#include "kiosk/spoken_cues.h"
 #include "kiosk/staff_settings.h"
 #include "kiosk/strings.h"
 #include "kiosk/stroke_gain.h"
@@ -96,13 +97,6 @@ struct KioskEngineOptions {
 // Latency and load as measured by the audio side.
 using EngineAudioStats = player::PlayerStats;
 
-// The four kiosk textures in token order (bubble wrap, broken glass, wooden board, cracked ground:
-// the paper's §5.2 order), from the first of $SAS_DATA_DIR/textures, the source tree and the
-// installed share/sketch-a-scratch/textures that holds them. Throws std::runtime_error when none.
-std::vector<std::string> FindTextureFiles();
-// The kiosk textures' names in token order ("bubble_wrap", "broken_glass", ...).
-std::vector<std::string> KioskTextureNames();
-
 // The voice surface: a recording becomes a sound image (100 ms per row, rows as bands filling the
 // 1080-pixel screen, paper figure 3) read as heights kVoiceReliefMm high, scratched with the
 // kVoiceMaterial material and, without pen tilt, a kVoiceWidthMm wide scrape.
@@ -113,24 +107,6 @@ inline constexpr double kVoiceWidthMm = 0.5;
 // most `max_duration_s` is used.
 surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration_s,
                                              std::size_t sample_count);
-// textures/<name>/texture.toml for kiosk texture `name`, from the first data folder holding it
-// (the order above); "" when `name` is no kiosk texture or no folder holds it.
-std::string FindTextureFile(const std::string& name);
-// <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
-std::string FindCuesDir();
-// <data>/strings (the language tables, strings.h), the same search order; "" when none has en.toml.
-std::string FindStringsDir();
-
-// A spoken cue as it was handed to the audio side (tests, the journal): the language, the cue's
-// key ("wooden_board_name", "count_3") and the sentence its file holds (cue_maker's .txt next to
-// it; "" when absent).
-struct CueEvent {
-  std::int64_t time_ns = 0;
-  std::string language;
-  std::string key;
-  std::string text;
-};
-
 class KioskEngine final {
  public:
   // Loads the textures, materials, counters and cues and prepares the default texture's scene.
@@ -221,10 +197,10 @@ class KioskEngine final {
   // The speaker's Leq over the last visit and the last hour (exposure_meter.h), updated by Tick.
   const ExposureMeter& exposure() const { return exposure_; }
   const KioskConfig& config() const { return options_.config; }
-  const std::string& cues_dir() const { return cues_dir_; }
-  int cues_loaded() const;
+  const std::string& cues_dir() const { return cues_.cues_dir(); }
+  int cues_loaded() const { return cues_.cues_loaded(); }
   // The current language's table (on-screen texts) and its code.
-  const LanguageTable& strings() const;
+  const LanguageTable& strings() const { return cues_.strings(); }
   const std::string& language() const { return strings().code; }
   // A texture's name in the current language.
   std::string TextureName(int texture) const;
@@ -238,6 +214,8 @@ class KioskEngine final {
 
  private:
   static constexpr int kVoiceSlot = 0;
+  // The passive stroke's level below a visitor's stroke of the same speed and pressure.
+  static constexpr double kPassiveGainDb = -10.0;
 
   // Hands the audio device's calls to the player's audio face.
   struct AudioFace final : platform::AudioRenderer {
@@ -246,16 +224,10 @@ class KioskEngine final {
       player->Render(interleaved, frames, channels);
     }
   };
-  struct Clip {  // a pre-loaded cue or test signal (its samples are the player's)
-    std::string name;
-    std::string text;  // a cue's spoken sentence
-  };
-  struct LanguageAssets {  // one language's table and cue clips (-1: absent)
-    LanguageTable table;
-    std::vector<int> name_cues, description_cues;  // per texture
-    std::map<std::string, int> message_cues;       // per CueKeys()
-  };
 
+  // The textures and their materials, the voice's material and the default texture; throws when
+  // no texture loads.
+  void LoadTextures();
   void ApplyActions(std::int64_t now_ns, const std::vector<SessionAction>& actions);
   void ShowSurface(const SurfaceChoice& choice);
   // Prepares `scene` (slot `slot`) with `choice`'s surface; false when there is none (no voice).
@@ -267,15 +239,9 @@ class KioskEngine final {
   void WatchPenRest(const PenInput& pen);
   void ApplyStaffGains();
   void SaveStaffSettings();
-  void Speak(const SessionAction& action);
-  void Speak(Cue cue, int texture);
   void Play(int clip);
-  void LoadCues();
-  int AddClip(std::string name, std::vector<float> mono, int channel);
-  void LoadLanguages();
-  static const char* CueKey(Cue cue);
-  void SpeakMessage(const std::string& key);
-  void PlayCue(int clip, const std::string& key);
+  // Plays a cue (none when its file is absent) and tells the cue observer.
+  void PlayCue(const CuePick& pick);
 
   KioskEngineOptions options_;
   std::vector<EngineTexture> textures_;
@@ -297,20 +263,14 @@ class KioskEngine final {
   std::optional<surface::GrayImage> voice_image_;
   platform::VoiceRecorder* recorder_ = nullptr;
   bool recording_ = false;
-  std::string cues_dir_;
   bool low_vibration_ = false;
   StaffSettings staff_;
   bool staff_may_save_ = true;  // false: a damaged staff file could not be moved aside
   ExposureMeter exposure_;
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
-  std::vector<Clip> clips_;
-  std::vector<player::PlayerClip> clip_samples_;  // loaded at start, then moved into the player
-  std::vector<LanguageAssets> languages_;  // [0]: the configured language
-  std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
-  int language_ = 0;
+  SpokenCues cues_;
   std::function<void(const CueEvent&)> cue_observer_;
-  int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
   // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
   bool passive_down_ = false;
   PenInput passive_pen_{};
