@@ -236,6 +236,9 @@ class KioskEngine final {
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void PassiveStroke(std::int64_t now_ns);
+  // The probe `choice`'s surface is scratched with when the pen gives no tilt: the voice's scrape
+  // or the texture's own (width and style).
+  void SetSurfaceProbe(const SurfaceChoice& choice, synth::ProbeCommand* command) const;
   void WatchPenRest(const PenInput& pen);
   void ApplyStaffGains();
   void SaveStaffSettings();

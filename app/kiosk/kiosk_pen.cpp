@@ -67,6 +67,17 @@ int KioskEngine::popped_bubbles() const {
   return state ? state->popped_count() : 0;
 }
 
+void KioskEngine::SetSurfaceProbe(const SurfaceChoice& choice, synth::ProbeCommand* command) const {
+  if (choice.voice) {
+    command->width_mm = kVoiceWidthMm;
+    command->style = synth::ProbeStyle::kScrape;
+    return;
+  }
+  const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
+  command->width_mm = probe.width_mm;
+  command->style = probe.style;
+}
+
 void KioskEngine::OnPen(const PenInput& pen) {
   last_now_ns_ = std::max(last_now_ns_, pen.time_ns);
   session_.OnPen(static_cast<double>(pen.time_ns) * 1e-9, pen.tip_down);
@@ -106,13 +117,8 @@ void KioskEngine::OnPen(const PenInput& pen) {
   if (pen.has_tilt) {
     command.width_mm = WidthFromTiltMm(pen.tilt_deg, mapping_);
     command.style = StyleFromWidth(command.width_mm, mapping_);
-  } else if (choice.voice) {
-    command.width_mm = kVoiceWidthMm;
-    command.style = synth::ProbeStyle::kScrape;
   } else {
-    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
-    command.width_mm = probe.width_mm;
-    command.style = probe.style;
+    SetSurfaceProbe(choice, &command);
   }
   if (pen.style) {
     command.style = *pen.style;
@@ -240,15 +246,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
   }
   command.normal_force_n = kPassivePressure * mapping_.max_force_n;
   command.penetration_m = kPassivePressure * current_relief_m_;
-  const SurfaceChoice choice = session_.surface();
-  if (choice.voice) {
-    command.width_mm = kVoiceWidthMm;
-    command.style = synth::ProbeStyle::kScrape;
-  } else {
-    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
-    command.width_mm = probe.width_mm;
-    command.style = probe.style;
-  }
+  SetSurfaceProbe(session_.surface(), &command);
   player_->control().Probe(now_ns, command);
   passive_down_ = true;
   passive_pen_ = pen;
