@@ -10,7 +10,8 @@
 //   pressure -> normal force and penetration, tilt -> width and style, velocity from successive
 //   samples) -> player::PlayerControl (a message to the audio side). Session (session.h) decides
 //   what is shown; its actions are carried out here (scene switch, recorder, voice slot, bubble
-//   reset, cues) and handed on to the UI.
+//   reset, cues) and handed on to the UI. The pen side is kiosk_pen.cpp; the languages and
+//   spoken cues are SpokenCues (spoken_cues.h).
 // The audio side is the player (player/player.h): audio() is what the audio device calls, the
 // player's AudioPlayer, which renders, cross-fades, mixes cues and measures latency.
 //
@@ -107,6 +108,7 @@ inline constexpr double kVoiceWidthMm = 0.5;
 // most `max_duration_s` is used.
 surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration_s,
                                              std::size_t sample_count);
+
 class KioskEngine final {
  public:
   // Loads the textures, materials, counters and cues and prepares the default texture's scene.
