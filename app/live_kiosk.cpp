@@ -383,8 +383,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // and the idle reset must not wait for it.
   auto output = std::make_unique<platform::BackgroundAudioOutput>(
       backends.audio_stream ? std::make_unique<platform::SupervisedAudioOutput>(
-                                  backends.audio_stream(), *engine, output_config, board)
-                            : platform::MakePortAudioOutput(*engine, output_config, board));
+                                  backends.audio_stream(), engine->audio(), output_config, board)
+                            : platform::MakePortAudioOutput(engine->audio(), output_config, board));
   output->Start();  // absent: runs silent, the supervision thread retries with back-off
   engine->SetAudioRunning(output->Running());
 

@@ -1,7 +1,7 @@
 #pragma once
 // How the sound and the vibration answer the hand: one straight stroke on a surface, played with a
 // chosen style, speed and pressure through the same synth::Scene and the same pen -> probe mapping
-// as the kiosk (kiosk_engine.cpp: force = pressure · 2 N, penetration = pressure · relief, width
+// as the kiosk (kiosk_pen.cpp: force = pressure · 2 N, penetration = pressure · relief, width
 // from tilt), measured on the sustained stroke. For blind visitors the sound is the texture, so the
 // synth must make faster strokes louder and brighter, harder strokes louder, and the three styles
 // audibly different; GestureResponseGrid plays the grid that checks it (tests and the

@@ -222,7 +222,7 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   VirtualVisit visit(engine);
 
   const double fs = visit.sample_rate_hz();
-  // The engine plays a pen event one buffer after it happened (kiosk_engine.h).
+  // The engine plays a pen event one buffer after it happened (player/player.h).
   const double delay_s = visit.block_frames() / fs;
   std::vector<surface::FrameWindow> windows;
   for (const auto& stroke : measurement.strokes) {

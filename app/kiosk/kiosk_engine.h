@@ -4,40 +4,36 @@
 // headless default (app/headless_demo.cpp: a scripted visit through the offline audio loop), so
 // the two never wire things twice.
 //
-// Control thread (OnPen, OnToken, OnRecordButton, OnStaffChord, Tick):
+// KioskEngine is the control side (every public method runs on the control thread):
 //   pen sample (screen px, pressure, tilt, CLOCK_MONOTONIC time) -> surface metres (the picture
 //   covers the screen: ResizeToCover's scale and crop) -> synth::ProbeCommand (gesture.h mapping:
 //   pressure -> normal force and penetration, tilt -> width and style, velocity from successive
-//   samples) -> SPSC queue. Session (session.h) decides what is shown; its actions are carried
-//   out here (scene switch, recorder, voice slot, bubble reset, cues) and handed on to the UI.
-// Audio thread (Render, the platform's AudioRenderer): pops the queue, places each command on the
-//   frame that keeps a constant pen-to-sound delay of one buffer, runs Scene::Process on the
-//   active scene (and on the previous one while they cross-fade after a switch), mixes the
-//   pre-loaded cue / test-signal buffer, and publishes the measured latency. No lock, no
-//   allocation, no I/O.
+//   samples) -> player::PlayerControl (a message to the audio side). Session (session.h) decides
+//   what is shown; its actions are carried out here (scene switch, recorder, voice slot, bubble
+//   reset, cues) and handed on to the UI. The pen side is kiosk_pen.cpp; the languages and
+//   spoken cues are SpokenCues (spoken_cues.h).
+// The audio side is the player (player/player.h): audio() is what the audio device calls, the
+// player's AudioPlayer, which renders, cross-fades, mixes cues and measures latency.
 //
-// Scenes live in a small pool of slots. A switch prepares a free slot on the control thread
-// (Scene::Prepare is not real-time) and sends its index; the audio thread acknowledges each switch
-// by a counter, and a slot is reused only when the audio thread can no longer be rendering it.
-// The old scene gets a pen-up and fades out over cross_fade_s while the new one fades in, so a
-// switch never clicks. Bubble pops flatten the field; the flattened field becomes the scene's
-// surface through the same switch once the pen is lifted.
+// A switch prepares a free scene slot of the player's pool here and sends its index; the next
+// waits until the audio side has taken it (pending_surface_), so slot reuse never races the
+// audio thread. Bubble pops flatten the field; the flattened field becomes the scene's surface
+// through the same switch once the pen is lifted.
 // Per-stroke loudness matching (stroke_gain.h): each pen sample updates the smoothed stroke
 // (speed, pressure, style) and hands the texture's correction for it to the scene the pen plays
 // (Scene::SetStrokeGains: ramped on the audio thread); a newly prepared scene starts at the
 // correction for the last stroke.
 
 #include <array>
-#include <atomic>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "kiosk/data_dirs.h"
 #include "kiosk/exposure_meter.h"
 #include "kiosk/gesture.h"
 #include "files/kiosk_config.h"
@@ -46,15 +42,15 @@
 #include "files/staff_settings.h"
 #include "files/strings.h"
 #include "levels/stroke_gain.h"
+#include "kiosk/spoken_cues.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
-#include "platform/common/spsc_queue.h"
 #include "platform/device_status.h"
+#include "player/player.h"
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
 #include "surface/sound_image.h"
 #include "surface/texture_set.h"
-#include "synth/safety_stage.h"
 #include "synth/scene.h"
 
 namespace sas::kiosk {
@@ -99,21 +95,8 @@ struct KioskEngineOptions {
   int max_block_frames = 4096;  // largest block Render is called with (longer ones are split)
 };
 
-// Latency and load as measured by the audio thread.
-struct EngineAudioStats {
-  std::int64_t pen_to_sample_last_ns = 0;  // pen event -> callback time its first sample is due
-  std::int64_t pen_to_sample_max_ns = 0;
-  std::uint64_t commands = 0;
-  std::uint64_t dropped_commands = 0;  // queue full (control side)
-  std::uint64_t switches = 0;
-};
-
-// The four kiosk textures in token order (bubble wrap, broken glass, wooden board, cracked ground:
-// the paper's §5.2 order), from the first of $SAS_DATA_DIR/textures, the source tree and the
-// installed share/sketch-a-scratch/textures that holds them. Throws std::runtime_error when none.
-std::vector<std::string> FindTextureFiles();
-// The kiosk textures' names in token order ("bubble_wrap", "broken_glass", ...).
-std::vector<std::string> KioskTextureNames();
+// Latency and load as measured by the audio side.
+using EngineAudioStats = player::PlayerStats;
 
 // The voice surface: a recording becomes a sound image (100 ms per row, rows as bands filling the
 // 1080-pixel screen, paper figure 3) read as heights kVoiceReliefMm high, scratched with the
@@ -125,35 +108,21 @@ inline constexpr double kVoiceWidthMm = 0.5;
 // most `max_duration_s` is used.
 surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration_s,
                                              std::size_t sample_count);
-// textures/<name>/texture.toml for kiosk texture `name`, from the first data folder holding it
-// (the order above); "" when `name` is no kiosk texture or no folder holds it.
-std::string FindTextureFile(const std::string& name);
-// <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
-std::string FindCuesDir();
-// <data>/strings (the language tables, strings.h), the same search order; "" when none has en.toml.
-std::string FindStringsDir();
 
-// A spoken cue as it was handed to the audio side (tests, the journal): the language, the cue's
-// key ("wooden_board_name", "count_3") and the sentence its file holds (cue_maker's .txt next to
-// it; "" when absent).
-struct CueEvent {
-  std::int64_t time_ns = 0;
-  std::string language;
-  std::string key;
-  std::string text;
-};
-
-class KioskEngine final : public platform::AudioRenderer {
+class KioskEngine final {
  public:
   // Loads the textures, materials, counters and cues and prepares the default texture's scene.
   // A texture whose files cannot be loaded is left out (logged, listed by texture_failures());
   // throws only when none loads.
   explicit KioskEngine(KioskEngineOptions options);
-  ~KioskEngine() override;
+  ~KioskEngine();
   KioskEngine(const KioskEngine&) = delete;
   KioskEngine& operator=(const KioskEngine&) = delete;
 
-  // ---- control thread
+  // The audio thread's face, for the audio output: the player's Render (nothing else of the
+  // engine runs there).
+  platform::AudioRenderer& audio() { return audio_face_; }
+
   void OnPen(const PenInput& pen);
   // `token`: the switch (0..3, the texture_paths order) holding the token that counts, -1: none.
   void OnToken(std::int64_t now_ns, int token);
@@ -166,8 +135,9 @@ class KioskEngine final : public platform::AudioRenderer {
   std::vector<SessionAction> Tick(std::int64_t now_ns);
   // The microphone's recorder, or null (no microphone: the record button says so).
   void SetRecorder(platform::VoiceRecorder* recorder) { recorder_ = recorder; }
-  // False while no audio callback can run (device missing): the control thread then applies
-  // switches itself so the pool stays consistent. Call after each AudioOutput::Poll.
+  // False while no audio callback can run (device missing): pen strokes and cues are then not
+  // queued (player.h), a switch waits until the device runs again. Call after each
+  // AudioOutput::Poll.
   void SetAudioRunning(bool running);
   // Staff panel: a 1 kHz tone on the speaker (ch 1), a 40..800 Hz sweep on the transducer (ch 2).
   void PlayTestTone();
@@ -205,7 +175,7 @@ class KioskEngine final : public platform::AudioRenderer {
   // one when it works again). Without a board every failure is a log line.
   void SetStatusBoard(platform::DeviceStatusBoard* board) { board_ = board; }
 
-  // ---- views (control thread)
+  // ---- views
   const Session& session() const { return session_; }
   const std::vector<EngineTexture>& textures() const { return textures_; }
   // "<key>: <why>" for each texture left out at start (empty when all four loaded).
@@ -229,10 +199,10 @@ class KioskEngine final : public platform::AudioRenderer {
   // The speaker's Leq over the last visit and the last hour (exposure_meter.h), updated by Tick.
   const ExposureMeter& exposure() const { return exposure_; }
   const KioskConfig& config() const { return options_.config; }
-  const std::string& cues_dir() const { return cues_dir_; }
-  int cues_loaded() const;
+  const std::string& cues_dir() const { return cues_.cues_dir(); }
+  int cues_loaded() const { return cues_.cues_loaded(); }
   // The current language's table (on-screen texts) and its code.
-  const LanguageTable& strings() const;
+  const LanguageTable& strings() const { return cues_.strings(); }
   const std::string& language() const { return strings().code; }
   // A texture's name in the current language.
   std::string TextureName(int texture) const;
@@ -244,63 +214,39 @@ class KioskEngine final : public platform::AudioRenderer {
   // them live in memory kept out of core dumps (platform::NoDumpMemory()).
   RecordingOutcome AcceptRecording(std::int64_t now_ns, std::span<const float> samples);
 
-  // ---- audio thread
-  void Render(float* interleaved, int frames, int channels) noexcept override;
-
  private:
   static constexpr int kVoiceSlot = 0;
-  static constexpr int kSceneSlots = 4;
+  // The passive stroke's level below a visitor's stroke of the same speed and pressure.
+  static constexpr double kPassiveGainDb = -10.0;
 
-  struct Message {
-    enum class Kind : std::uint8_t { kProbe, kSwitch, kPlay };
-    Kind kind = Kind::kProbe;
-    std::int64_t time_ns = 0;
-    synth::ProbeCommand command{};
-    int slot = -1;  // kSwitch: the new scene; kPlay: the clip
-  };
-  struct Clip {  // a pre-loaded cue or test signal: mono at the output rate, on one channel
-    std::vector<float> samples;
-    int channel = 0;  // 0 speaker, 1 transducer
-    std::string name;
-    std::string text;  // a cue's spoken sentence
-  };
-  struct LanguageAssets {  // one language's table and cue clips (-1: absent)
-    LanguageTable table;
-    std::vector<int> name_cues, description_cues;  // per texture
-    std::map<std::string, int> message_cues;       // per CueKeys()
-  };
-  struct Slot {  // control side: what the slot's scene was prepared with (kept alive by it)
-    synth::Scene scene;
-    std::shared_ptr<const surface::HeightField> field;
+  // Hands the audio device's calls to the player's audio face.
+  struct AudioFace final : platform::AudioRenderer {
+    player::AudioPlayer* player = nullptr;
+    void Render(float* interleaved, int frames, int channels) noexcept override {
+      player->Render(interleaved, frames, channels);
+    }
   };
 
+  // The textures and their materials, the voice's material and the default texture; throws when
+  // no texture loads.
+  void LoadTextures();
   void ApplyActions(std::int64_t now_ns, const std::vector<SessionAction>& actions);
   void ShowSurface(const SurfaceChoice& choice);
-  void SwitchTo(std::shared_ptr<const surface::HeightField> field, const Material& material,
-                const surface::TextureGains& gains, int texture);
+  // Prepares `scene` (slot `slot`) with `choice`'s surface; false when there is none (no voice).
+  bool PrepareScene(const SurfaceChoice& choice, int slot, synth::Scene& scene);
   StrokeCorrection CorrectionFor(int texture) const;
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void PassiveStroke(std::int64_t now_ns);
+  // The probe `choice`'s surface is scratched with when the pen gives no tilt: the voice's scrape
+  // or the texture's own (width and style).
+  void SetSurfaceProbe(const SurfaceChoice& choice, synth::ProbeCommand* command) const;
   void WatchPenRest(const PenInput& pen);
   void ApplyStaffGains();
   void SaveStaffSettings();
-  void Speak(const SessionAction& action);
-  void Speak(Cue cue, int texture);
   void Play(int clip);
-  void Send(const Message& message);
-  int FreeSlot() const;
-  void LoadCues();
-  int AddClip(std::string name, std::vector<float> mono, int channel);
-  void LoadLanguages();
-  static const char* CueKey(Cue cue);
-  void SpeakMessage(const std::string& key);
-  void PlayCue(int clip, const std::string& key);
-
-  // Audio side.
-  void ApplySwitchOnAudio(int slot) noexcept;
-  void RenderChunk(float* out, int frames, int channels, std::int64_t chunk_start_ns) noexcept;
-  void RenderSegment(float* out, int channels, int begin, int end, int command_count) noexcept;
+  // Plays a cue (none when its file is absent) and tells the cue observer.
+  void PlayCue(const CuePick& pick);
 
   KioskEngineOptions options_;
   std::vector<EngineTexture> textures_;
@@ -322,21 +268,14 @@ class KioskEngine final : public platform::AudioRenderer {
   std::optional<surface::GrayImage> voice_image_;
   platform::VoiceRecorder* recorder_ = nullptr;
   bool recording_ = false;
-  std::string cues_dir_;
   bool low_vibration_ = false;
   StaffSettings staff_;
   bool staff_may_save_ = true;  // false: a damaged staff file could not be moved aside
-  double speaker_ceiling_ = 1.0, transducer_ceiling_ = 1.0;  // linear, from the configuration
-  double low_vibration_factor_ = 1.0;                        // transducer ceiling factor
   ExposureMeter exposure_;
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
-  std::vector<Clip> clips_;
-  std::vector<LanguageAssets> languages_;  // [0]: the configured language
-  std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
-  int language_ = 0;
+  SpokenCues cues_;
   std::function<void(const CueEvent&)> cue_observer_;
-  int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
   // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
   bool passive_down_ = false;
   PenInput passive_pen_{};
@@ -349,13 +288,10 @@ class KioskEngine final : public platform::AudioRenderer {
   std::int64_t rest_since_ns_ = -1;
   bool rest_spoken_ = false;
 
-  // Control side of the pool.
-  std::array<Slot, kSceneSlots> slots_;
+  // The fields the player's scene slots were prepared with (each scene reads its own).
+  std::array<std::shared_ptr<const surface::HeightField>, player::kSceneSlots> slot_fields_;
   std::shared_ptr<const surface::HeightField> current_field_;
-  std::uint64_t switches_sent_ = 0;
-  int requested_slot_ = -1;
   std::optional<SurfaceChoice> pending_surface_;  // waiting for the audio side to take a switch
-  bool audio_running_ = false;
   std::int64_t last_now_ns_ = 0;
   double current_relief_m_ = 0.0;
   mutable UsageCounters saved_counters_;
@@ -372,42 +308,10 @@ class KioskEngine final : public platform::AudioRenderer {
   std::int64_t stroke_down_ns_ = 0;  // when the pen last touched down
   int stroke_texture_ = -1;          // texture of the scene the pen plays (-1: the voice)
   StrokeCorrection stroke_correction_;
-  std::atomic<std::uint64_t> dropped_{0};
 
-  // Audio side (the audio thread only, except the atomics).
-  platform::SpscQueue<Message, 2048> queue_;
-  int active_ = -1;     // slot being rendered
-  int fade_from_ = -1;  // slot fading out, -1 none
-  int fade_pos_ = 0;
-  int fade_len_ = 1;
-  bool lift_fading_ = false;
-  int playing_clip_ = -1;
-  std::atomic<bool> audio_clip_playing_{false};
-  std::size_t clip_pos_ = 0;
-  std::int64_t virtual_now_ns_ = 0;
-  std::vector<synth::ProbeCommand> block_commands_;
-  std::vector<float> scratch_a_, scratch_b_;
-  // The last stage before the device: every source is mixed before it (synth/safety_stage.h).
-  synth::SafetyStage safety_;
-  bool safety_low_vibration_ = false;             // the ceilings the stage has now
-  std::atomic<bool> audio_low_vibration_{false};  // set by SetLowVibration (control thread)
-  // Staff volume and vibration as linear gains (control thread writes, audio thread follows them
-  // with a 20 ms one-pole, so a button press never clicks).
-  std::atomic<float> audio_staff_sound_{1.0f};
-  std::atomic<float> audio_staff_haptic_{1.0f};
-  float staff_sound_now_ = 1.0f, staff_haptic_now_ = 1.0f;
-  float staff_smooth_ = 1.0f;  // the one-pole's per-sample coefficient
-  // The speaker's running totals after the safety stage (audio thread writes, Tick reads).
-  double speaker_energy_ = 0.0;
-  std::uint64_t speaker_frames_ = 0;
-  std::atomic<double> audio_speaker_energy_{0.0};
-  std::atomic<std::uint64_t> audio_speaker_frames_{0};
-  std::atomic<int> audio_active_{-1};
-  std::atomic<int> audio_fade_from_{-1};
-  std::atomic<std::uint64_t> switches_done_{0};
-  std::atomic<std::uint64_t> commands_done_{0};
-  std::atomic<std::int64_t> latency_last_ns_{0};
-  std::atomic<std::int64_t> latency_max_ns_{0};
+  // The audio side (made last in the constructor: it starts with the default texture's scene).
+  std::unique_ptr<player::Player> player_;
+  AudioFace audio_face_;
 };
 
 }  // namespace sas::kiosk

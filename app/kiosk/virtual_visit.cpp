@@ -39,7 +39,7 @@ VirtualVisit::VirtualVisit(KioskEngine& engine, Hooks hooks, bool keep_output, d
       pen_period_ns_(std::floor(1e9 / pen_rate_hz)),
       fs_hz_(engine.config().sample_rate_hz),
       block_frames_(engine.config().buffer_frames),
-      core_(engine),
+      core_(engine.audio()),
       block_(static_cast<std::size_t>(block_frames_) * 2) {
   engine_.SetAudioRunning(true);  // the callback core below is the audio thread
 }

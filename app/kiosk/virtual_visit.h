@@ -8,7 +8,7 @@
 //   pen samples due before the block (a tablet's report rate, 200 Hz) -> KioskEngine::OnPen
 //   -> KioskEngine::Tick (session timers, recording, switches) -> the microphone gets one block of
 //   the scripted voice while the recorder is armed -> the platform's callback core renders one
-//   device block through KioskEngine::Render -> the clock advances by the block.
+//   device block through the engine's audio() (the player) -> the clock advances by the block.
 // Hooks let the caller watch each step (the headless visit's view, the soak's NaN count).
 // A straight pen stroke (StraightStroke) is the script all three use.
 

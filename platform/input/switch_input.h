@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "platform/common/spsc_queue.h"
+#include "common/spsc_queue.h"
 #include "platform/input/switch_event.h"
 
 namespace sas::platform {

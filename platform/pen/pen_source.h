@@ -14,7 +14,7 @@
 #include <mutex>
 #include <string>
 
-#include "platform/common/spsc_queue.h"
+#include "common/spsc_queue.h"
 #include "platform/device_status.h"
 
 namespace sas::platform {

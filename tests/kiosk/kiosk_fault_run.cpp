@@ -176,7 +176,7 @@ TEST_CASE(
   output_config.reopen_backoff_max_s = 0.2;
   output_config.stall_timeout_s = 60.0;  // this test is the audio thread: it pumps by hand
   platform::SupervisedAudioOutput output(std::make_unique<platform::FakeAudioStreamBackend>(device),
-                                         engine, output_config, board);
+                                         engine.audio(), output_config, board);
   REQUIRE(output.Start());
   // Pen: the fake tablet.
   auto pen_owned = platform::OpenPen({}, board, std::make_unique<platform::FakePenSource>(true));
@@ -370,7 +370,7 @@ TEST_CASE(
     platform::DeviceStatusBoard full_board(full_log);
     platform::FakeAudioStreamBackend::Shared second;
     platform::SupervisedAudioOutput second_output(
-        std::make_unique<platform::FakeAudioStreamBackend>(second), engine, output_config,
+        std::make_unique<platform::FakeAudioStreamBackend>(second), engine.audio(), output_config,
         full_board);
     REQUIRE(second_output.Start());
     platform::FakeAudioStreamBackend::Unplug(second);

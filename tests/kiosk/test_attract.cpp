@@ -35,7 +35,7 @@ struct Run {
     for (double s = 0.0; s < seconds; s += kFrames / 48000.0) {
       engine.Tick(t);
       if (listening && engine.AmbientListening()) ++*listening;
-      engine.Render(out.data(), kFrames, 2);
+      engine.audio().Render(out.data(), kFrames, 2);
       for (int i = 0; i < kFrames; ++i) sum += static_cast<double>(out[2 * i]) * out[2 * i];
       n += kFrames;
       t += kBlockNs;

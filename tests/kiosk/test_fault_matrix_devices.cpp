@@ -138,7 +138,8 @@ struct Rig {
     output_config.reopen_backoff_max_s = 0.2;
     output_config.stall_timeout_s = 60.0;  // the test is the device's thread: it pumps by hand
     output = std::make_unique<platform::SupervisedAudioOutput>(
-        std::make_unique<platform::FakeAudioStreamBackend>(device), *engine, output_config, board);
+        std::make_unique<platform::FakeAudioStreamBackend>(device), engine->audio(), output_config,
+        board);
     output->Start();
 
     pen_owned = platform::OpenPen(
@@ -615,7 +616,7 @@ struct SignalRow {
   options.counters_path = counters_path;
   kiosk::KioskEngine engine(options);
   engine.SetStatusBoard(&board);
-  platform::OfflineAudioOutput output(engine, {});
+  platform::OfflineAudioOutput output(engine.audio(), {});
   output.Start();
   platform::SwitchInputs switches;
   board.Set("switches", DeviceState::kOk, "keys 1-4 toggle tokens, R records", "keyboard");

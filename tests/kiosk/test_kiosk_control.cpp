@@ -60,7 +60,7 @@ TEST_CASE(
   options.counters_path = dir.file("counters.toml");
   kiosk::KioskEngine engine(options);
   platform::AudioOutputConfig output_config;
-  platform::OfflineAudioOutput output(engine, output_config);
+  platform::OfflineAudioOutput output(engine.audio(), output_config);
   REQUIRE(output.Start());
   platform::SwitchInputs switches;  // keys only
   platform::Logger log;
@@ -149,7 +149,7 @@ TEST_CASE(
   options.cues_dir = "/nonexistent";
   kiosk::KioskEngine engine(options);
   platform::AudioOutputConfig output_config;
-  platform::OfflineAudioOutput output(engine, output_config);
+  platform::OfflineAudioOutput output(engine.audio(), output_config);
   REQUIRE(output.Start());
   platform::SwitchInputs switches;
   platform::Logger log;

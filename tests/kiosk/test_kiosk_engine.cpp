@@ -37,7 +37,7 @@ KioskEngineOptions Options() {
 
 std::vector<float> RenderBlocks(KioskEngine& engine, int blocks) {
   std::vector<float> out(static_cast<std::size_t>(kFrames * 2 * blocks));
-  for (int b = 0; b < blocks; ++b) engine.Render(out.data() + b * kFrames * 2, kFrames, 2);
+  for (int b = 0; b < blocks; ++b) engine.audio().Render(out.data() + b * kFrames * 2, kFrames, 2);
   return out;
 }
 

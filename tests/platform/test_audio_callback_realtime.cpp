@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "platform/audio/portaudio_callbacks.h"
-#include "platform/common/spsc_queue.h"
+#include "common/spsc_queue.h"
 
 namespace {
 
@@ -118,7 +118,7 @@ struct Command {
 // both channels.
 class SynthLikeRenderer final : public sas::platform::AudioRenderer {
  public:
-  sas::platform::SpscQueue<Command, 64> commands;
+  sas::SpscQueue<Command, 64> commands;
   void Render(float* out, int frames, int channels) noexcept override {
     Command c{};
     while (commands.TryPop(c)) {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "platform/common/no_dump_buffer.h"
-#include "platform/common/spsc_queue.h"
+#include "common/spsc_queue.h"
 #include "platform/device_status.h"
 #include "platform/log/log.h"
 #include "support/smaps.h"
@@ -27,7 +27,7 @@ TEST_CASE("SPSC queue delivers every message in order across threads and never o
     std::uint64_t seq;
     double payload;
   };
-  SpscQueue<Msg, 64> q;
+  sas::SpscQueue<Msg, 64> q;
   constexpr std::uint64_t kCount = 200'000;
   std::thread producer([&] {
     for (std::uint64_t i = 0; i < kCount;) {
@@ -50,7 +50,7 @@ TEST_CASE("SPSC queue delivers every message in order across threads and never o
 }
 
 TEST_CASE("SPSC queue refuses the push after capacity messages", "[platform]") {
-  SpscQueue<int, 4> q;
+  sas::SpscQueue<int, 4> q;
   for (int i = 0; i < 4; ++i) CHECK(q.TryPush(i));
   CHECK_FALSE(q.TryPush(99));
   int v = -1;

@@ -108,7 +108,7 @@ class Screens {
         mic_.Feed(voice->data() + voice_pos_, n);
         voice_pos_ += n;
       }
-      engine_.Render(out.data(), kFrames, 2);
+      engine_.audio().Render(out.data(), kFrames, 2);
       t_ns_ += static_cast<std::int64_t>(kFrames / kFs * 1e9);
       view_.Advance(now_s(), false);
     }

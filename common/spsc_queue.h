@@ -1,7 +1,7 @@
 #pragma once
 // Single-producer single-consumer lock-free ring of small trivially-copyable messages:
-// the pen thread -> control thread, switch threads -> control thread, and later the UI ->
-// audio ProbeCommands. Fixed capacity (a power of two) chosen at compile time: no allocation, no
+// the pen thread -> control thread, switch threads -> control thread, and the control side ->
+// the audio player. Fixed capacity (a power of two) chosen at compile time: no allocation, no
 // locks, wait-free on both sides. The classic Lamport ring with acquire/release indices; each side
 // caches the other's index to avoid touching the shared cache line on every call (the idea behind
 // choc::fifo and rigtorp's SPSCQueue; written from scratch here).
@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <type_traits>
 
-namespace sas::platform {
+namespace sas {
 
 template <typename T, std::size_t kCapacity>
 class SpscQueue {
@@ -63,4 +63,4 @@ class SpscQueue {
   alignas(64) std::array<T, kCapacity> slots_{};
 };
 
-}  // namespace sas::platform
+}  // namespace sas

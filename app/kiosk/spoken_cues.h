@@ -1,0 +1,89 @@
+#pragma once
+// The kiosk's languages and spoken cues, loaded once at start so playing one never touches the
+// disk: the language tables (on-screen texts, strings.h) of the configured language and of the
+// visitor's choices, each language's cue recordings (<cues>/<language>/, surface/cue_library.h),
+// the recording's tone and the staff test signals. The control side asks which clip says a
+// session action or a message in the current language; the clips' samples go to the audio side
+// (the player) once, in clip order. A missing table or cue is logged and stays silent.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "files/kiosk_config.h"
+#include "kiosk/session.h"
+#include "files/strings.h"
+#include "player/player.h"
+
+namespace sas::kiosk {
+
+// A spoken cue as it was handed to the audio side (tests, the journal): the language, the cue's
+// key ("wooden_board_name", "count_3") and the sentence its file holds (cue_maker's .txt next to
+// it; "" when absent).
+struct CueEvent {
+  std::int64_t time_ns = 0;
+  std::string language;
+  std::string key;
+  std::string text;
+};
+
+// A clip to play (-1: none, its file is absent) and the cue key it says.
+struct CuePick {
+  int clip = -1;
+  std::string key;
+};
+
+class SpokenCues {
+ public:
+  SpokenCues() = default;  // no languages: only to be assigned a loaded one
+  // `cues_dir` "": no cue files (the test signals are still made). `spoken_cues` false: nobody
+  // expects cues (no warning about missing ones). `texture_keys`: the loaded textures, in order.
+  SpokenCues(const KioskConfig& config, const std::string& strings_dir, std::string cues_dir,
+             bool spoken_cues, std::vector<std::string> texture_keys);
+
+  // The clips' samples for the player (moved out: call once).
+  std::vector<player::PlayerClip> TakeClipSamples();
+
+  // What a kSpeak session action says, a cue about `texture`, a message cue by key.
+  CuePick ForAction(const SessionAction& action) const;
+  CuePick ForCue(Cue cue, int texture) const;
+  CuePick ForMessage(const std::string& key) const;
+  int tone_clip() const { return tone_clip_; }
+  int sweep_clip() const { return sweep_clip_; }
+  // The sentence clip `clip` says ("" for the test signals or without cue_maker's .txt).
+  const std::string& clip_text(int clip) const;
+
+  // The next of the visitor languages; false (nothing changes) when fewer than two.
+  bool NextLanguage();
+  void ResetLanguage() { language_ = 0; }  // the configured language
+  const LanguageTable& strings() const;
+
+  const std::string& cues_dir() const { return cues_dir_; }
+  int cues_loaded() const;
+
+ private:
+  struct Clip {
+    std::string name;
+    std::string text;  // a cue's spoken sentence
+  };
+  struct LanguageAssets {  // one language's table and cue clips (-1: absent)
+    LanguageTable table;
+    std::vector<int> name_cues, description_cues;  // per texture
+    std::map<std::string, int> message_cues;       // per CueKeys()
+  };
+
+  int AddClip(std::string name, std::vector<float> mono, int channel);
+  void LoadLanguages(const KioskConfig& config, const std::string& strings_dir);
+  void LoadCues(double fs_hz, bool spoken_cues);
+
+  std::string cues_dir_;
+  std::vector<std::string> texture_keys_;
+  std::vector<Clip> clips_;
+  std::vector<player::PlayerClip> clip_samples_;
+  std::vector<LanguageAssets> languages_;  // [0]: the configured language
+  std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
+  int language_ = 0;
+  int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
+};
+
+}  // namespace sas::kiosk
