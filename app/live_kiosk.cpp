@@ -119,7 +119,7 @@ class StaffPanel {
     const platform::SwitchInputs* switches;
     const platform::TokenSelector* selector;
     bool record_down;
-    ui::StylusSample pen;
+    platform::PenReading pen;
     std::string config_line;
     int buffer_frames;
     int sample_rate_hz;
@@ -219,9 +219,9 @@ class StaffPanel {
          white);
     line("Pen: pressure " + Fixed(in.pen.pressure, 2) + ", tilt " + Fixed(in.pen.TiltDeg(), 1) +
              " deg, at " + Fixed(in.pen.x_px, 0) + "," + Fixed(in.pen.y_px, 0) +
-             (in.pen.source == ui::StylusSource::kPen     ? " (tablet)"
-              : in.pen.source == ui::StylusSource::kTouch ? " (touch)"
-                                                          : " (mouse)"),
+             (in.pen.origin == platform::PenOrigin::kTablet  ? " (tablet)"
+              : in.pen.origin == platform::PenOrigin::kTouch ? " (touch)"
+                                                             : " (mouse)"),
          white);
     const auto& counters = in.engine->session().counters();
     std::string strokes = "Strokes:";
@@ -437,17 +437,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   std::fflush(out);
 
   StaffPanel staff;
-  ui::StylusSample last_pen{};
+  platform::PenReading last_pen{};
   const StaffButtons buttons = StaffButtonRects(width, height);
-  const auto stylus_to_engine = [&](const ui::StylusSample& s) {
-    kiosk::PenInput input_sample;
-    input_sample.time_ns = s.time_ns;
-    input_sample.x_px = s.x_px;
-    input_sample.y_px = s.y_px;
-    input_sample.pressure = s.tip_down ? s.pressure : 0.0;
-    input_sample.tilt_deg = s.TiltDeg();
-    input_sample.has_tilt = s.source == ui::StylusSource::kPen;
-    input_sample.tip_down = s.tip_down;
+  const auto stylus_to_engine = [&](const platform::PenReading& s) {
     last_pen = s;
     view->OnStylus(s);
     // While the staff panel is open the pen works its buttons; elsewhere it still explores.
@@ -495,7 +487,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
         return;
       }
     }
-    engine->OnPen(input_sample);
+    engine->OnPen(s);
   };
 
   // Ambient-adaptive sound gain (gains.ambient_adaptive): the microphone's meter while the attract
@@ -541,33 +533,15 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     }
     const std::int64_t now_ns = platform::MonotonicNowNs();
     const double now_s = static_cast<double>(now_ns) * 1e-9;
-    const auto actions = control.Step(now_ns, [&](const platform::PenEvent& pe) {
-      ui::StylusSample s;
-      s.time_ns = pe.time_ns;
-      s.x_px = pe.x_px;
-      s.y_px = pe.y_px;
-      s.tip_down = pe.tip_down && pe.in_proximity;
-      s.pressure = s.tip_down ? pe.pressure : 0.0f;
-      s.tilt_x_deg = pe.tilt_x_deg;
-      s.tilt_y_deg = pe.tilt_y_deg;
-      s.source = ui::StylusSource::kPen;
-      stylus_to_engine(s);
-    });
+    const auto actions = control.Step(now_ns, stylus_to_engine);
     if (!actions.empty()) view->Apply(actions, now_s);
     // The passive stroke's dent travels with its virtual probe (drawn like a pen's).
     if (const auto passive = engine->passive_pen()) {
-      ui::StylusSample s;
-      s.time_ns = passive->time_ns;
-      s.x_px = static_cast<float>(passive->x_px);
-      s.y_px = static_cast<float>(passive->y_px);
-      s.tip_down = true;
-      s.pressure = static_cast<float>(passive->pressure);
-      s.source = ui::StylusSource::kPen;
-      view->OnStylus(s);
+      view->OnStylus(*passive);
       passive_shown = true;
     } else if (passive_shown) {
       passive_shown = false;
-      ui::StylusSample s;
+      platform::PenReading s;
       s.time_ns = now_ns;
       s.x_px = last_pen.x_px;
       s.y_px = last_pen.y_px;

@@ -527,7 +527,7 @@ int KioskEngine::popped_bubbles() const {
   return state ? state->popped_count() : 0;
 }
 
-void KioskEngine::OnPen(const PenInput& pen) {
+void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::ProbeStyle> style) {
   last_now_ns_ = std::max(last_now_ns_, pen.time_ns);
   session_.OnPen(static_cast<double>(pen.time_ns) * 1e-9, pen.tip_down);
   WatchPenRest(pen);
@@ -563,8 +563,8 @@ void KioskEngine::OnPen(const PenInput& pen) {
   command.normal_force_n = pressure * mapping_.max_force_n;
   command.penetration_m = pressure * current_relief_m_;
   const SurfaceChoice choice = session_.surface();
-  if (pen.has_tilt) {
-    command.width_mm = WidthFromTiltMm(pen.tilt_deg, mapping_);
+  if (pen.HasTilt()) {
+    command.width_mm = WidthFromTiltMm(pen.TiltDeg(), mapping_);
     command.style = StyleFromWidth(command.width_mm, mapping_);
   } else if (choice.voice) {
     command.width_mm = kVoiceWidthMm;
@@ -574,9 +574,9 @@ void KioskEngine::OnPen(const PenInput& pen) {
     command.width_mm = probe.width_mm;
     command.style = probe.style;
   }
-  if (pen.style) {
-    command.style = *pen.style;
-    if (pen.has_tilt) command.width_mm = ProbeWidthMm(command.style, pen.tilt_deg, mapping_);
+  if (style) {
+    command.style = *style;
+    if (pen.HasTilt()) command.width_mm = ProbeWidthMm(command.style, pen.TiltDeg(), mapping_);
   }
 
   // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
@@ -627,7 +627,7 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_fy_ = y_m;
 }
 
-void KioskEngine::WatchPenRest(const PenInput& pen) {
+void KioskEngine::WatchPenRest(const platform::PenReading& pen) {
   if (!pen.tip_down || pen.pressure <= 0.0) {
     rest_since_ns_ = -1;
     return;
@@ -676,7 +676,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
   const double travelled_px = (in_cycle_s - kPassiveGapS) * kPassiveSpeedMmS / pitch_mm;
   const double leg = std::fmod(travelled_px, 2.0 * span_px);
   const double along = leg < span_px ? leg : 2.0 * span_px - leg;
-  PenInput pen;
+  platform::PenReading pen;
   pen.time_ns = now_ns;
   pen.x_px = 0.25 * sw + along;
   pen.y_px = 0.5 * sh + 0.08 * sh * std::sin(2.0 * 3.14159265358979 * along / span_px);

@@ -50,6 +50,7 @@
 #include "platform/audio/voice_recorder.h"
 #include "platform/common/spsc_queue.h"
 #include "platform/device_status.h"
+#include "platform/pen/pen_reading.h"
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
 #include "surface/sound_image.h"
@@ -58,18 +59,6 @@
 #include "synth/scene.h"
 
 namespace sas::kiosk {
-
-// One stylus reading in screen pixels (whatever produced it: pen, mouse, touch, a script).
-struct PenInput {
-  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC (or the headless run's virtual clock)
-  double x_px = 0.0;
-  double y_px = 0.0;
-  double pressure = 0.0;  // 0..1
-  double tilt_deg = 0.0;  // from upright
-  bool tip_down = false;
-  bool has_tilt = false;  // a pen: tilt chooses width and style; mouse/touch: the texture's probe
-  std::optional<synth::ProbeStyle> style;  // forces a style (the headless visit's roll strokes)
-};
 
 struct EngineTexture {
   std::string key;  // folder name, e.g. "wooden_board" (config, counters, cue file names)
@@ -154,7 +143,9 @@ class KioskEngine final : public platform::AudioRenderer {
   KioskEngine& operator=(const KioskEngine&) = delete;
 
   // ---- control thread
-  void OnPen(const PenInput& pen);
+  // A pen reading in screen pixels (pen, mouse, touch or a script); `style` forces a probe style
+  // (the headless visit's roll strokes).
+  void OnPen(const platform::PenReading& pen, std::optional<synth::ProbeStyle> style = {});
   // `token`: the switch (0..3, the texture_paths order) holding the token that counts, -1: none.
   void OnToken(std::int64_t now_ns, int token);
   void OnRecordButton(std::int64_t now_ns, bool pressed);
@@ -179,8 +170,8 @@ class KioskEngine final : public platform::AudioRenderer {
   bool NextLanguage(std::int64_t now_ns);
   // While idle with attract_stroke: the virtual probe's position (screen px) and whether its tip is
   // on the picture now, for the view's dent.
-  std::optional<PenInput> passive_pen() const {
-    return passive_down_ ? std::optional<PenInput>(passive_pen_) : std::nullopt;
+  std::optional<platform::PenReading> passive_pen() const {
+    return passive_down_ ? std::optional<platform::PenReading>(passive_pen_) : std::nullopt;
   }
   // True when nothing the kiosk plays on its own (the passive stroke and its ring-out, a cue) is
   // sounding: the room's level can be measured by the microphone then.
@@ -282,7 +273,7 @@ class KioskEngine final : public platform::AudioRenderer {
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void PassiveStroke(std::int64_t now_ns);
-  void WatchPenRest(const PenInput& pen);
+  void WatchPenRest(const platform::PenReading& pen);
   void ApplyStaffGains();
   void SaveStaffSettings();
   void Speak(const SessionAction& action);
@@ -339,7 +330,7 @@ class KioskEngine final : public platform::AudioRenderer {
   int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
   // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
   bool passive_down_ = false;
-  PenInput passive_pen_{};
+  platform::PenReading passive_pen_{};
   synth::ProbeCommand last_passive_command_{};
   std::int64_t passive_started_ns_ = -1;  // this attract's start, -1 while a visitor is there
   std::int64_t passive_quiet_since_ns_ = 0;
@@ -362,7 +353,7 @@ class KioskEngine final : public platform::AudioRenderer {
   double last_counters_save_s_ = -1e9;
   // Pen mapping state.
   bool have_last_pen_ = false;
-  PenInput last_pen_{};
+  platform::PenReading last_pen_{};
   double last_fx_ = 0.0, last_fy_ = 0.0;
   double dir_x_ = 1.0, dir_y_ = 0.0;
   StrokeGainMap stroke_gains_;

@@ -215,22 +215,20 @@ TEST_CASE(
   kiosk::KioskControl control(engine, {&output, pen, &switches}, log);
   std::int64_t now = platform::MonotonicNowNs();
   std::vector<float> played_mark;
-  const auto to_engine = [&](const platform::PenEvent& e) {
-    engine.OnPen(sas::test::PenInputFromTablet(e));
-  };
+  const auto to_engine = [&](const platform::PenReading& e) { engine.OnPen(e); };
   // One pass of the loop and one audio block (2.67 ms of the fake device's thread).
   const auto pass = [&] {
     now += 2667 * 1000;
     control.Step(now, to_engine);
     platform::FakeAudioStreamBackend::Pump(device, 1);
   };
-  float x = 300.0f;
+  double x = 300.0;
   const auto stroke_sample = [&](bool down) {
-    platform::PenEvent e;
+    platform::PenReading e;
     e.time_ns = now;
-    e.x_px = (x += 4.0f);
-    e.y_px = 500.0f;
-    e.pressure = down ? 0.8f : 0.0f;
+    e.x_px = (x += 4.0);
+    e.y_px = 500.0;
+    e.pressure = down ? 0.8 : 0.0;
     e.tip_down = down;
     e.in_proximity = true;
     pen->Push(e);

@@ -36,13 +36,13 @@ kiosk::UsageCounters OnDisk(const std::string& path) {
 
 void Stroke(kiosk::KioskEngine& engine, std::int64_t t_ns) {
   for (int i = 0; i < 3; ++i) {
-    kiosk::PenInput pen;
+    platform::PenReading pen;
     pen.time_ns = t_ns + i * 3 * kMs;
     pen.x_px = 500.0 + 20.0 * i;
     pen.y_px = 500.0;
     pen.tip_down = i < 2;
     pen.pressure = pen.tip_down ? 0.8 : 0.0;
-    pen.has_tilt = true;
+    pen.origin = platform::PenOrigin::kTablet;
     engine.OnPen(pen);
   }
 }
@@ -66,7 +66,7 @@ TEST_CASE(
   platform::Logger log;
   log.SetEchoToStderr(false);
   kiosk::KioskControl control(engine, {&output, nullptr, &switches}, log);
-  const auto on_pen = [](const platform::PenEvent&) {};
+  const auto on_pen = [](const platform::PenReading&) {};
 
   std::int64_t now = 1000 * kMs;
   Stroke(engine, now);
@@ -160,19 +160,19 @@ TEST_CASE(
   REQUIRE(pen != nullptr);
   auto* fake = static_cast<platform::FakePenSource*>(pen.get());
   kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
-  std::vector<platform::PenEvent> seen;
-  const auto on_pen = [&](const platform::PenEvent& e) { seen.push_back(e); };
+  std::vector<platform::PenReading> seen;
+  const auto on_pen = [&](const platform::PenReading& e) { seen.push_back(e); };
 
   control.Step(1000 * kMs, on_pen);
   CHECK(control.PointerActive());
   CHECK(board.Get("pen").state == platform::DeviceState::kMissing);
 
   fake->Replug(board);
-  platform::PenEvent e;
+  platform::PenReading e;
   e.time_ns = 1001 * kMs;
-  e.kind = platform::PenEventKind::kTipDown;
+  e.kind = platform::PenReadingKind::kTipDown;
   e.tip_down = e.in_proximity = true;
-  e.pressure = 0.5f;
+  e.pressure = 0.5;
   REQUIRE(fake->Push(e));
   control.Step(1002 * kMs, on_pen);
   CHECK_FALSE(control.PointerActive());
