@@ -14,6 +14,7 @@
 #include "kiosk/builtin_profiles.h"
 #include "kiosk/counters_file.h"
 #include "kiosk/output_gains.h"
+#include "kiosk/pen_mapping.h"
 #include "kiosk/render_command.h"
 #include "platform/common/clock.h"
 #include "platform/common/no_dump_buffer.h"
@@ -66,6 +67,14 @@ std::vector<std::string> DataDirs(const std::string& sub) {
   dirs.push_back((fs::path(kSourceDir) / "textures" / (sub == "textures" ? "" : sub)).string());
   dirs.push_back((fs::path(kInstallPrefix) / "share" / "sketch-a-scratch" / sub).string());
   return dirs;
+}
+
+// The probe of an input without tilt (mouse, touch, the passive stroke): the texture's own, or a
+// narrow scrape on the voice.
+ProbeShape UntiltedProbe(const SurfaceChoice& choice, const std::vector<EngineTexture>& textures) {
+  if (choice.voice) return {kVoiceWidthMm, synth::ProbeStyle::kScrape};
+  const auto& probe = textures[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
+  return {probe.width_mm, probe.style};
 }
 
 }  // namespace
@@ -560,24 +569,9 @@ void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::Pr
   }
   command.direction_x = dir_x_;
   command.direction_y = dir_y_;
-  command.normal_force_n = pressure * mapping_.max_force_n;
-  command.penetration_m = pressure * current_relief_m_;
   const SurfaceChoice choice = session_.surface();
-  if (pen.HasTilt()) {
-    command.width_mm = WidthFromTiltMm(pen.TiltDeg(), mapping_);
-    command.style = StyleFromWidth(command.width_mm, mapping_);
-  } else if (choice.voice) {
-    command.width_mm = kVoiceWidthMm;
-    command.style = synth::ProbeStyle::kScrape;
-  } else {
-    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
-    command.width_mm = probe.width_mm;
-    command.style = probe.style;
-  }
-  if (style) {
-    command.style = *style;
-    if (pen.HasTilt()) command.width_mm = ProbeWidthMm(command.style, pen.TiltDeg(), mapping_);
-  }
+  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(choice, textures_), style, mapping_,
+                  command);
 
   // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
   // the pen plays; held while the pen is up. The speed counts hover reports too (touch-down).
@@ -705,17 +699,9 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
     slots_[static_cast<std::size_t>(requested_slot_)].scene.SetStrokeGains(gain, gain,
                                                                            kStrokeRampS);
   }
-  command.normal_force_n = kPassivePressure * mapping_.max_force_n;
-  command.penetration_m = kPassivePressure * current_relief_m_;
-  const SurfaceChoice choice = session_.surface();
-  if (choice.voice) {
-    command.width_mm = kVoiceWidthMm;
-    command.style = synth::ProbeStyle::kScrape;
-  } else {
-    const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
-    command.width_mm = probe.width_mm;
-    command.style = probe.style;
-  }
+  // No tilt: the passive probe strokes with the texture's own probe.
+  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(session_.surface(), textures_), {},
+                  mapping_, command);
   Message message;
   message.kind = Message::Kind::kProbe;
   message.time_ns = now_ns;
