@@ -215,7 +215,13 @@ TEST_CASE(
   kiosk::KioskControl control(engine, {&output, pen, &switches}, log);
   std::int64_t now = platform::MonotonicNowNs();
   std::vector<float> played_mark;
-  const auto to_engine = [&](const platform::PenReading& e) { engine.OnPen(e); };
+  // The visitor's pen leans (a rub): each reading must reach the engine leaning as it was pushed.
+  constexpr double kTiltXDeg = 30.0, kTiltYDeg = 25.0;
+  int tilted_readings = 0;
+  const auto to_engine = [&](const platform::PenReading& e) {
+    if (e.HasTilt() && e.tilt_x_deg == kTiltXDeg && e.tilt_y_deg == kTiltYDeg) ++tilted_readings;
+    engine.OnPen(e);
+  };
   // One pass of the loop and one audio block (2.67 ms of the fake device's thread).
   const auto pass = [&] {
     now += 2667 * 1000;
@@ -229,6 +235,8 @@ TEST_CASE(
     e.x_px = (x += 4.0);
     e.y_px = 500.0;
     e.pressure = down ? 0.8 : 0.0;
+    e.tilt_x_deg = kTiltXDeg;
+    e.tilt_y_deg = kTiltYDeg;
     e.tip_down = down;
     e.in_proximity = true;
     pen->Push(e);
@@ -246,6 +254,7 @@ TEST_CASE(
   std::size_t mark = device.played.size() / 2;
   stroke(60);
   CHECK(played_since(mark) > 1e-3);  // the kiosk sounds before any fault
+  CHECK(tilted_readings == 61);      // 60 readings down and the lift, all still leaning
 
   // ---- audio device lost and back
   {
