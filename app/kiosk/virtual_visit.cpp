@@ -23,15 +23,6 @@ PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int
   };
 }
 
-platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config) {
-  platform::VoiceRecorderConfig recorder;
-  recorder.sample_rate_hz = config.sample_rate_hz;
-  recorder.max_duration_s = config.record_max_duration_s;
-  recorder.clip_level = static_cast<float>(config.record_clip_level);
-  recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
-  return recorder;
-}
-
 VirtualVisit::VirtualVisit(KioskEngine& engine, Hooks hooks, bool keep_output, double pen_rate_hz)
     : engine_(engine),
       hooks_(std::move(hooks)),

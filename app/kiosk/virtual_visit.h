@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "kiosk/device_configs.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
@@ -50,9 +51,6 @@ struct PenStroke {
 // (its tilt counts, leaning along x), hovering until t0 + hover_s, tip down for duration_s from
 // then, then lifted at the end point with pressure 0.
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px);
-
-// The recorder settings the configuration asks for (the live kiosk's microphone uses the same).
-platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config);
 
 class VirtualVisit {
  public:
