@@ -49,6 +49,40 @@ void Stroke(kiosk::KioskEngine& engine, std::int64_t t_ns) {
   }
 }
 
+kiosk::KioskEngineOptions VirtualClockOptions() {
+  kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = "/nonexistent";
+  return options;
+}
+
+struct QuietLogger : platform::Logger {
+  QuietLogger() { SetEchoToStderr(false); }
+};
+
+// A kiosk with offline audio, keys for tokens and `pen_source` as its tablet, under the control
+// loop.
+struct TabletRig {
+  explicit TabletRig(std::unique_ptr<platform::FakePenSource> pen_source)
+      : engine(VirtualClockOptions()),
+        output(engine, platform::AudioOutputConfig{}),
+        fake(pen_source.get()),
+        pen(platform::OpenPen({}, board, std::move(pen_source))),
+        control(engine, {&output, pen.get(), &switches}, log) {
+    REQUIRE(output.Start());
+    REQUIRE(pen != nullptr);
+  }
+
+  kiosk::KioskEngine engine;
+  platform::OfflineAudioOutput output;
+  platform::SwitchInputs switches;
+  QuietLogger log;
+  platform::DeviceStatusBoard board{log};
+  platform::FakePenSource* fake;
+  std::unique_ptr<platform::PenSource> pen;
+  kiosk::KioskControl control;
+};
+
 }  // namespace
 
 TEST_CASE(
@@ -146,39 +180,24 @@ TEST_CASE(
     "control: with no tablet at start mouse/touch drive the kiosk, and a tablet plugged in later "
     "takes over with its events reaching the loop",
     "[kiosk]") {
-  kiosk::KioskEngineOptions options;
-  options.virtual_clock = true;
-  options.cues_dir = "/nonexistent";
-  kiosk::KioskEngine engine(options);
-  platform::AudioOutputConfig output_config;
-  platform::OfflineAudioOutput output(engine, output_config);
-  REQUIRE(output.Start());
-  platform::SwitchInputs switches;
-  platform::Logger log;
-  log.SetEchoToStderr(false);
-  platform::DeviceStatusBoard board(log);
-  auto pen = platform::OpenPen(
-      {}, board, std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
-  REQUIRE(pen != nullptr);
-  auto* fake = static_cast<platform::FakePenSource*>(pen.get());
-  kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
+  TabletRig rig(std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
   std::vector<platform::PenReading> seen;
   const auto on_pen = [&](const platform::PenReading& e) { seen.push_back(e); };
 
-  control.Step(1000 * kMs, on_pen);
-  CHECK(control.PointerActive());
-  CHECK(board.Get("pen").state == platform::DeviceState::kMissing);
+  rig.control.Step(1000 * kMs, on_pen);
+  CHECK(rig.control.PointerActive());
+  CHECK(rig.board.Get("pen").state == platform::DeviceState::kMissing);
 
-  fake->Replug(board);
+  rig.fake->Replug(rig.board);
   platform::PenReading e;
   e.time_ns = 1001 * kMs;
   e.kind = platform::PenReadingKind::kTipDown;
   e.tip_down = e.in_proximity = true;
   e.pressure = 0.5;
-  REQUIRE(fake->Push(e));
-  control.Step(1002 * kMs, on_pen);
-  CHECK_FALSE(control.PointerActive());
-  CHECK(board.Get("pen").state == platform::DeviceState::kOk);
+  REQUIRE(rig.fake->Push(e));
+  rig.control.Step(1002 * kMs, on_pen);
+  CHECK_FALSE(rig.control.PointerActive());
+  CHECK(rig.board.Get("pen").state == platform::DeviceState::kOk);
   REQUIRE(seen.size() == 1);
   CHECK(seen[0].time_ns == 1001 * kMs);
 }
@@ -189,21 +208,8 @@ namespace {
 // pushed into the pen source and carried by the control loop (`through_pen_source`), or handed to
 // the engine directly as the readings the source hands out.
 std::vector<float> TabletStroke(double tilt_x_deg, bool through_pen_source) {
-  kiosk::KioskEngineOptions options;
-  options.virtual_clock = true;
-  options.cues_dir = "/nonexistent";
-  kiosk::KioskEngine engine(options);
-  platform::AudioOutputConfig output_config;
-  platform::OfflineAudioOutput output(engine, output_config);
-  REQUIRE(output.Start());
-  platform::SwitchInputs switches;
-  platform::Logger log;
-  log.SetEchoToStderr(false);
-  platform::DeviceStatusBoard board(log);
-  auto pen = platform::OpenPen({}, board, std::make_unique<platform::FakePenSource>(true));
-  REQUIRE(pen != nullptr);
-  auto* fake = static_cast<platform::FakePenSource*>(pen.get());
-  kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
+  TabletRig rig(std::make_unique<platform::FakePenSource>(true));
+  const platform::AudioOutputConfig output_config;
   const auto block_ns = static_cast<std::int64_t>(
       std::llround(output_config.frames_per_buffer * 1e9 / output_config.sample_rate_hz));
   for (int i = 0; i < 80; ++i) {
@@ -217,16 +223,16 @@ std::vector<float> TabletStroke(double tilt_x_deg, bool through_pen_source) {
     reading.pressure = reading.tip_down ? 0.7 : 0.0;
     reading.tilt_x_deg = tilt_x_deg;
     if (through_pen_source) {
-      REQUIRE(fake->Push(reading));
-      control.Step(now, [&](const platform::PenReading& r) { engine.OnPen(r); });
+      REQUIRE(rig.fake->Push(reading));
+      rig.control.Step(now, [&](const platform::PenReading& r) { rig.engine.OnPen(r); });
     } else {
       reading.origin = platform::PenOrigin::kTablet;
-      engine.OnPen(reading);
-      control.Step(now, [](const platform::PenReading&) {});
+      rig.engine.OnPen(reading);
+      rig.control.Step(now, [](const platform::PenReading&) {});
     }
-    output.RenderBlocks(1);
+    rig.output.RenderBlocks(1);
   }
-  return output.buffer();
+  return rig.output.buffer();
 }
 
 }  // namespace
