@@ -8,8 +8,9 @@
 //   pen reading (platform/pen/pen_reading.h: screen px, pressure, tilt, CLOCK_MONOTONIC time) ->
 //   surface metres (the picture covers the screen: ResizeToCover's scale and crop) ->
 //   synth::ProbeCommand (pen_mapping.h: pressure -> normal force and penetration, tilt -> width
-//   and style; velocity from successive readings) -> SPSC queue. Session (session.h) decides what is shown; its actions are carried
-//   out here (scene switch, recorder, voice slot, bubble reset, cues) and handed on to the UI.
+//   and style; velocity from successive readings) -> SPSC queue. Session (session.h) decides what
+//   is shown; its actions are carried out here (scene switch, recorder, voice slot, bubble reset,
+//   cues) and handed on to the UI.
 // Audio thread (Render, the platform's AudioRenderer): pops the queue, places each command on the
 //   frame that keeps a constant pen-to-sound delay of one buffer, runs Scene::Process on the
 //   active scene (and on the previous one while they cross-fade after a switch), mixes the
