@@ -131,24 +131,12 @@ class Visit {
  private:
   kiosk::VirtualVisit::Hooks MakeHooks() {
     kiosk::VirtualVisit::Hooks hooks;
-    hooks.on_pen = [this](const kiosk::PenInput& pen) { view_.OnStylus(ToStylus(pen)); };
+    hooks.on_pen = [this](const platform::PenReading& pen) { view_.OnStylus(pen); };
     hooks.on_tick = [this](std::vector<kiosk::SessionAction> actions) {
       view_.Apply(actions, now_s());
     };
     hooks.before_render = [this] { view_.Advance(now_s(), false); };
     return hooks;
-  }
-
-  static ui::StylusSample ToStylus(const kiosk::PenInput& pen) {
-    ui::StylusSample s;
-    s.time_ns = pen.time_ns;
-    s.x_px = static_cast<float>(pen.x_px);
-    s.y_px = static_cast<float>(pen.y_px);
-    s.pressure = static_cast<float>(pen.pressure);
-    s.tip_down = pen.tip_down;
-    s.tilt_x_deg = static_cast<float>(pen.tilt_deg);
-    s.source = ui::StylusSource::kPen;
-    return s;
   }
 
   HeadlessOptions options_;

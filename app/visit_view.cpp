@@ -150,7 +150,7 @@ void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double n
   }
 }
 
-void VisitView::OnStylus(const ui::StylusSample& sample) {
+void VisitView::OnStylus(const platform::PenReading& sample) {
   view_.OnStylus(sample);
 }
 

@@ -37,7 +37,7 @@ class VisitView {
 
   // Carries out the UI part of the session's actions (new picture, reset, attract, message).
   void Apply(const std::vector<kiosk::SessionAction>& actions, double now_s);
-  void OnStylus(const ui::StylusSample& sample);
+  void OnStylus(const platform::PenReading& sample);
   // Rebuilds the overlays for `now_s` (countdown, meter, messages, attract, staff backdrop) and
   // advances the view; returns whether a frame is due.
   bool Advance(double now_s, bool staff_panel_open, ui::Overlays staff_extra = {});

@@ -12,6 +12,7 @@
 
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_engine.h"
+#include "kiosk/pen_mapping.h"
 #include "kiosk/synthetic_voice.h"
 #include "surface/image_surface.h"
 #include "surface/sound_image.h"
@@ -51,11 +52,10 @@ Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double
   pen.tip_down = true;
   pen.x_m = x0_mm * 1e-3;
   pen.y_m = y0_mm * 1e-3;
-  pen.normal_force_n = stroke.pressure * mapping.max_force_n;
-  pen.penetration_m = stroke.pressure * surface::ReliefM(*surface.field);
-  pen.width_mm =
-      WidthFromTiltMm(stroke.style == synth::ProbeStyle::kRub ? kTiltRubDeg : 0.0, mapping);
-  pen.style = stroke.style;
+  // A rub is held tilted, scrape and roll upright; the style is the stroke's.
+  ApplyPenPressure(stroke.pressure, surface::ReliefM(*surface.field), mapping, pen);
+  ApplyPenTilt(stroke.style == synth::ProbeStyle::kRub ? kTiltRubDeg : 0.0, ProbeShape{},
+               stroke.style, mapping, pen);
   pen.direction_x = dx;
   pen.direction_y = dy;
   pen.landing_speed_mps = kLandingMps;

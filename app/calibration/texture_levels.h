@@ -84,7 +84,7 @@ struct CalibrationGrid {
   std::vector<double> rub_widths_mm = {2.1, 4.0, 6.0};
   // Rolling (a ball following the relief) is far quieter than sliding on the soft textures; its
   // own rows let the kiosk match it across textures. The kiosk's roll is the pen's ball whatever
-  // the tilt (kiosk/gesture.h, ProbeWidthMm): one width. Empty: no roll rows. The texture's
+  // the tilt (kiosk/pen_mapping.h, ProbeWidthMm): one width. Empty: no roll rows. The texture's
   // [gains] come from scrape and rub only, so these rows change no gain.
   std::vector<double> roll_widths_mm = {0.3};
   std::vector<double> speeds_mm_s = {40.0, 80.0, 160.0, 350.0};

@@ -202,26 +202,6 @@ std::optional<Gesture> FindBuiltinGesture(const std::string& name) {
   return std::nullopt;
 }
 
-double WidthFromTiltMm(double tilt_deg, const GestureMapping& mapping) {
-  const double fraction = Clamp01(tilt_deg / mapping.max_tilt_deg);
-  return mapping.min_width_mm + fraction * (mapping.max_width_mm - mapping.min_width_mm);
-}
-
-double TiltFromWidthDeg(double width_mm, const GestureMapping& mapping) {
-  const double fraction =
-      Clamp01((width_mm - mapping.min_width_mm) / (mapping.max_width_mm - mapping.min_width_mm));
-  return fraction * mapping.max_tilt_deg;
-}
-
-synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping) {
-  return width_mm >= mapping.rub_width_mm ? synth::ProbeStyle::kRub : synth::ProbeStyle::kScrape;
-}
-
-double ProbeWidthMm(synth::ProbeStyle style, double tilt_deg, const GestureMapping& mapping) {
-  return style == synth::ProbeStyle::kRoll ? mapping.min_width_mm
-                                           : WidthFromTiltMm(tilt_deg, mapping);
-}
-
 std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const GestureMapping& mapping,
                                             double sample_rate_hz) {
   if (gesture.samples.size() < 2) throw GestureError(gesture.name + ": needs at least two rows");
@@ -263,10 +243,8 @@ std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const Gestur
     c.velocity_mps = length_mm * 1e-3 / span_s;
     c.direction_x = direction_x;
     c.direction_y = direction_y;
-    c.normal_force_n = Clamp01(pressure) * mapping.max_force_n;
-    c.penetration_m = Clamp01(pressure) * mapping.max_penetration_m;
-    c.style = mapping.style.value_or(StyleFromWidth(WidthFromTiltMm(tilt_deg, mapping), mapping));
-    c.width_mm = ProbeWidthMm(c.style, tilt_deg, mapping);
+    ApplyPenPressure(pressure, mapping.max_penetration_m, mapping, c);
+    ApplyPenTilt(tilt_deg, ProbeShape{}, mapping.style, mapping, c);
     c.landing_speed_mps = gesture.landing_speed_mps;
     commands.push_back(timed);
   }

@@ -1,7 +1,8 @@
 #pragma once
 // Gestures: what the pen did over time, as a time series of (t, x, y, pressure, tilt), and the
 // stream of synth::ProbeCommand it turns into at a control rate. Used by the offline renderer and
-// tests; the live kiosk maps pen events the same way (GestureMapping), one event at a time.
+// tests; the live kiosk maps pen readings through the same pen mapping (pen_mapping.h), one
+// reading at a time.
 //
 // CSV format (one header line, then one row per sample; '#' comment lines and blank lines are
 // skipped):
@@ -11,13 +12,10 @@
 // field's origin is its top-left sample), pressure 0..1 (0 = pen up), tilt in degrees from upright
 // (0..90). Between rows everything is interpolated linearly; after the last row the pen is lifted.
 //
-// Mapping (paper §4): velocity = distance between successive rows / their time
-// difference (constant along a segment: the paper's Δx = v Δt), direction = the segment's unit
-// vector; normal force = pressure · max_force_n (default 0..2 N); penetration = pressure ·
-// max_penetration_m (light touch feels only the peaks, full pressure the whole relief); width
-// grows linearly with tilt from min_width_mm (upright: scratch) to max_width_mm (max_tilt_deg:
-// rub); style = scrape below rub_width_mm, rub above. The passive mode (automatic exploration at a
-// set velocity) is just a gesture: PassiveSweep().
+// Mapping: velocity = distance between successive rows / their time difference (constant along a
+// segment: the paper's Δx = v Δt), direction = the segment's unit vector; pressure and tilt go
+// through the pen mapping (pen_mapping.h) with max_penetration_m as the relief to feel. The
+// passive mode (automatic exploration at a set velocity) is just a gesture: PassiveSweep().
 
 #include <cstdint>
 #include <optional>
@@ -25,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/pen_mapping.h"
 #include "synth/probe_command.h"
 
 namespace sas::kiosk {
@@ -50,17 +49,6 @@ struct Gesture {
   double duration_s() const { return samples.empty() ? 0.0 : samples.back().t_s; }
 };
 
-struct GestureMapping {
-  double control_rate_hz = 1000.0;    // commands per second (a pen reports at 100..1000 Hz)
-  double max_force_n = 2.0;           // normal force at full pressure
-  double max_penetration_m = 0.2e-3;  // penetration at full pressure (render: the field's relief)
-  double min_width_mm = 0.3;          // upright pen: a scratch
-  double max_width_mm = 6.0;          // fully tilted pen: a rub
-  double max_tilt_deg = 60.0;         // tilt giving max_width_mm
-  double rub_width_mm = 2.0;          // widths at or above this rub, below it scrape
-  std::optional<synth::ProbeStyle> style;  // forces one style (e.g. roll) instead of by width
-};
-
 // A probe command at an absolute frame of the rendering (frame 0 = gesture time 0).
 struct TimedCommand {
   std::int64_t frame = 0;
@@ -84,14 +72,5 @@ Gesture PassiveSweep(double velocity_mps, double length_mm, double pressure, dou
 // final pen-up. Frames are round(t · sample_rate_hz), strictly increasing.
 std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const GestureMapping& mapping,
                                             double sample_rate_hz);
-
-// Pen tilt -> probe width and style, as above (also for the live kiosk).
-double WidthFromTiltMm(double tilt_deg, const GestureMapping& mapping);
-// Its inverse within the mapping's range: the tilt that gives a probe `width_mm` wide.
-double TiltFromWidthDeg(double width_mm, const GestureMapping& mapping);
-synth::ProbeStyle StyleFromWidth(double width_mm, const GestureMapping& mapping);
-// The probe width for a pen held at `tilt_deg` in `style`: the tilt's width, except for a roll,
-// whose ball is the pen's own and does not grow when the pen leans (min_width_mm).
-double ProbeWidthMm(synth::ProbeStyle style, double tilt_deg, const GestureMapping& mapping);
 
 }  // namespace sas::kiosk

@@ -56,20 +56,20 @@ bool KioskControl::PointerActive() const {
 
 std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHandler& on_pen) {
   if (devices_.pen != nullptr) {
-    platform::PenEvent event;
-    while (devices_.pen->Pop(event)) {
-      last_pen_ = event;
-      on_pen(event);
+    platform::PenReading reading;
+    while (devices_.pen->Pop(reading)) {
+      last_pen_ = reading;
+      on_pen(reading);
     }
     const bool connected = devices_.pen->Connected();
     if (pen_was_connected_ && !connected && last_pen_.tip_down) {
       // Unplugged mid-stroke: no tip-up will ever come from it. Lift the stroke where it was.
-      platform::PenEvent lift = last_pen_;
+      platform::PenReading lift = last_pen_;
       lift.time_ns = now_ns;
-      lift.kind = platform::PenEventKind::kTipUp;
+      lift.kind = platform::PenReadingKind::kTipUp;
       lift.tip_down = false;
       lift.in_proximity = false;
-      lift.pressure = 0.0f;
+      lift.pressure = 0.0;
       last_pen_ = lift;
       on_pen(lift);
     }

@@ -56,9 +56,9 @@ struct KioskDevices {
 
 class KioskControl {
  public:
-  // Receives every pen event (and the synthesised lift); the live kiosk maps it to a stylus
-  // sample for the view and the engine, tests to an engine PenInput.
-  using PenHandler = std::function<void(const platform::PenEvent&)>;
+  // Receives every pen reading (and the synthesised lift); the live kiosk hands it to the view
+  // and the engine, tests to the engine.
+  using PenHandler = std::function<void(const platform::PenReading&)>;
 
   KioskControl(KioskEngine& engine, KioskDevices devices, platform::Logger& log);
 
@@ -90,7 +90,7 @@ class KioskControl {
   platform::TokenSelector selector_;
   bool record_down_ = false;
   bool pen_was_connected_ = true;
-  platform::PenEvent last_pen_{};
+  platform::PenReading last_pen_{};
 };
 
 // One journal line per visible session step (staff reading the journal, the end-to-end tests).

@@ -13,6 +13,7 @@
 #include "files/counters_file.h"
 #include "levels/output_gains.h"
 #include "files/material_file.h"
+#include "kiosk/pen_mapping.h"
 #include "platform/common/clock.h"
 #include "platform/common/no_dump_buffer.h"
 #include "platform/log/log.h"

@@ -5,13 +5,13 @@
 // the two never wire things twice.
 //
 // KioskEngine is the control side (every public method runs on the control thread):
-//   pen sample (screen px, pressure, tilt, CLOCK_MONOTONIC time) -> surface metres (the picture
-//   covers the screen: ResizeToCover's scale and crop) -> synth::ProbeCommand (gesture.h mapping:
-//   pressure -> normal force and penetration, tilt -> width and style, velocity from successive
-//   samples) -> player::PlayerControl (a message to the audio side). Session (session.h) decides
-//   what is shown; its actions are carried out here (scene switch, recorder, voice slot, bubble
-//   reset, cues) and handed on to the UI. The pen side is kiosk_pen.cpp; the languages and
-//   spoken cues are SpokenCues (spoken_cues.h).
+//   pen reading (platform/pen/pen_reading.h: screen px, pressure, tilt, CLOCK_MONOTONIC time) ->
+//   surface metres (the picture covers the screen: ResizeToCover's scale and crop) ->
+//   synth::ProbeCommand (pen_mapping.h: pressure -> normal force and penetration, tilt -> width
+//   and style; velocity from successive readings) -> player::PlayerControl (a message to the
+//   audio side). Session (session.h) decides what is shown; its actions are carried out here
+//   (scene switch, recorder, voice slot, bubble reset, cues) and handed on to the UI. The pen side
+//   is kiosk_pen.cpp; the languages and spoken cues are SpokenCues (spoken_cues.h).
 // The audio side is the player (player/player.h): audio() is what the audio device calls, the
 // player's AudioPlayer, which renders, cross-fades, mixes cues and measures latency.
 //
@@ -46,6 +46,7 @@
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
 #include "platform/device_status.h"
+#include "platform/pen/pen_reading.h"
 #include "player/player.h"
 #include "surface/image_loader.h"
 #include "surface/profile_slots.h"
@@ -54,18 +55,6 @@
 #include "synth/scene.h"
 
 namespace sas::kiosk {
-
-// One stylus reading in screen pixels (whatever produced it: pen, mouse, touch, a script).
-struct PenInput {
-  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC (or the headless run's virtual clock)
-  double x_px = 0.0;
-  double y_px = 0.0;
-  double pressure = 0.0;  // 0..1
-  double tilt_deg = 0.0;  // from upright
-  bool tip_down = false;
-  bool has_tilt = false;  // a pen: tilt chooses width and style; mouse/touch: the texture's probe
-  std::optional<synth::ProbeStyle> style;  // forces a style (the headless visit's roll strokes)
-};
 
 struct EngineTexture {
   std::string key;  // folder name, e.g. "wooden_board" (config, counters, cue file names)
@@ -123,7 +112,9 @@ class KioskEngine final {
   // engine runs there).
   platform::AudioRenderer& audio() { return audio_face_; }
 
-  void OnPen(const PenInput& pen);
+  // A pen reading in screen pixels (pen, mouse, touch or a script); `style` forces a probe style
+  // (the headless visit's roll strokes).
+  void OnPen(const platform::PenReading& pen, std::optional<synth::ProbeStyle> style = {});
   // `token`: the switch (0..3, the texture_paths order) holding the token that counts, -1: none.
   void OnToken(std::int64_t now_ns, int token);
   void OnRecordButton(std::int64_t now_ns, bool pressed);
@@ -149,8 +140,8 @@ class KioskEngine final {
   bool NextLanguage(std::int64_t now_ns);
   // While idle with attract_stroke: the virtual probe's position (screen px) and whether its tip is
   // on the picture now, for the view's dent.
-  std::optional<PenInput> passive_pen() const {
-    return passive_down_ ? std::optional<PenInput>(passive_pen_) : std::nullopt;
+  std::optional<platform::PenReading> passive_pen() const {
+    return passive_down_ ? std::optional<platform::PenReading>(passive_pen_) : std::nullopt;
   }
   // True when nothing the kiosk plays on its own (the passive stroke and its ring-out, a cue) is
   // sounding: the room's level can be measured by the microphone then.
@@ -240,8 +231,8 @@ class KioskEngine final {
   void PassiveStroke(std::int64_t now_ns);
   // The probe `choice`'s surface is scratched with when the pen gives no tilt: the voice's scrape
   // or the texture's own (width and style).
-  void SetSurfaceProbe(const SurfaceChoice& choice, synth::ProbeCommand* command) const;
-  void WatchPenRest(const PenInput& pen);
+  ProbeShape UntiltedProbe(const SurfaceChoice& choice) const;
+  void WatchPenRest(const platform::PenReading& pen);
   void ApplyStaffGains();
   void SaveStaffSettings();
   void Play(int clip);
@@ -278,7 +269,7 @@ class KioskEngine final {
   std::function<void(const CueEvent&)> cue_observer_;
   // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
   bool passive_down_ = false;
-  PenInput passive_pen_{};
+  platform::PenReading passive_pen_{};
   synth::ProbeCommand last_passive_command_{};
   std::int64_t passive_started_ns_ = -1;  // this attract's start, -1 while a visitor is there
   std::int64_t passive_quiet_since_ns_ = 0;
@@ -298,7 +289,7 @@ class KioskEngine final {
   double last_counters_save_s_ = -1e9;
   // Pen mapping state.
   bool have_last_pen_ = false;
-  PenInput last_pen_{};
+  platform::PenReading last_pen_{};
   double last_fx_ = 0.0, last_fy_ = 0.0;
   double dir_x_ = 1.0, dir_y_ = 0.0;
   StrokeGainMap stroke_gains_;

@@ -67,18 +67,13 @@ int KioskEngine::popped_bubbles() const {
   return state ? state->popped_count() : 0;
 }
 
-void KioskEngine::SetSurfaceProbe(const SurfaceChoice& choice, synth::ProbeCommand* command) const {
-  if (choice.voice) {
-    command->width_mm = kVoiceWidthMm;
-    command->style = synth::ProbeStyle::kScrape;
-    return;
-  }
+ProbeShape KioskEngine::UntiltedProbe(const SurfaceChoice& choice) const {
+  if (choice.voice) return {kVoiceWidthMm, synth::ProbeStyle::kScrape};
   const auto& probe = textures_[static_cast<std::size_t>(choice.texture)].loaded.file.probe;
-  command->width_mm = probe.width_mm;
-  command->style = probe.style;
+  return {probe.width_mm, probe.style};
 }
 
-void KioskEngine::OnPen(const PenInput& pen) {
+void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::ProbeStyle> style) {
   last_now_ns_ = std::max(last_now_ns_, pen.time_ns);
   session_.OnPen(static_cast<double>(pen.time_ns) * 1e-9, pen.tip_down);
   WatchPenRest(pen);
@@ -111,19 +106,8 @@ void KioskEngine::OnPen(const PenInput& pen) {
   }
   command.direction_x = dir_x_;
   command.direction_y = dir_y_;
-  command.normal_force_n = pressure * mapping_.max_force_n;
-  command.penetration_m = pressure * current_relief_m_;
   const SurfaceChoice choice = session_.surface();
-  if (pen.has_tilt) {
-    command.width_mm = WidthFromTiltMm(pen.tilt_deg, mapping_);
-    command.style = StyleFromWidth(command.width_mm, mapping_);
-  } else {
-    SetSurfaceProbe(choice, &command);
-  }
-  if (pen.style) {
-    command.style = *pen.style;
-    if (pen.has_tilt) command.width_mm = ProbeWidthMm(command.style, pen.tilt_deg, mapping_);
-  }
+  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(choice), style, mapping_, command);
 
   // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
   // the pen plays; held while the pen is up. The speed counts hover reports too (touch-down).
@@ -170,7 +154,7 @@ void KioskEngine::OnPen(const PenInput& pen) {
   last_fy_ = y_m;
 }
 
-void KioskEngine::WatchPenRest(const PenInput& pen) {
+void KioskEngine::WatchPenRest(const platform::PenReading& pen) {
   if (!pen.tip_down || pen.pressure <= 0.0) {
     rest_since_ns_ = -1;
     return;
@@ -216,7 +200,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
   const double travelled_px = (in_cycle_s - kPassiveGapS) * kPassiveSpeedMmS / pitch_mm;
   const double leg = std::fmod(travelled_px, 2.0 * span_px);
   const double along = leg < span_px ? leg : 2.0 * span_px - leg;
-  PenInput pen;
+  platform::PenReading pen;
   pen.time_ns = now_ns;
   pen.x_px = 0.25 * sw + along;
   pen.y_px = 0.5 * sh + 0.08 * sh * std::sin(2.0 * 3.14159265358979 * along / span_px);
@@ -244,9 +228,9 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
     const double gain = std::pow(10.0, kPassiveGainDb / 20.0);
     player_->control().scene(slot).SetStrokeGains(gain, gain, kStrokeRampS);
   }
-  command.normal_force_n = kPassivePressure * mapping_.max_force_n;
-  command.penetration_m = kPassivePressure * current_relief_m_;
-  SetSurfaceProbe(session_.surface(), &command);
+  // No tilt: the passive probe strokes with the texture's own probe.
+  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(session_.surface()), {}, mapping_,
+                  command);
   player_->control().Probe(now_ns, command);
   passive_down_ = true;
   passive_pen_ = pen;

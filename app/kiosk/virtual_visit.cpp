@@ -7,29 +7,20 @@
 namespace sas::kiosk {
 
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px) {
-  return [stroke, t0_s, width_px, height_px](double t_s) -> std::optional<PenInput> {
+  return [stroke, t0_s, width_px, height_px](double t_s) -> std::optional<ScriptedPen> {
     const double since_touch_s = t_s - t0_s - stroke.hover_s;
     const double u =
         std::clamp(since_touch_s / stroke.duration_s, -stroke.hover_s / stroke.duration_s, 1.0);
-    PenInput sample;
-    sample.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * u) * width_px;
-    sample.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * u) * height_px;
-    sample.tip_down = since_touch_s >= 0.0 && since_touch_s < stroke.duration_s;
-    sample.pressure = sample.tip_down ? stroke.pressure : 0.0;
-    sample.tilt_deg = stroke.tilt_deg;
-    sample.has_tilt = true;
-    sample.style = stroke.style;
-    return sample;
+    platform::PenReading pen;
+    pen.origin = platform::PenOrigin::kTablet;
+    pen.x_px = (stroke.x0 + (stroke.x1 - stroke.x0) * u) * width_px;
+    pen.y_px = (stroke.y0 + (stroke.y1 - stroke.y0) * u) * height_px;
+    pen.tip_down = since_touch_s >= 0.0 && since_touch_s < stroke.duration_s;
+    pen.in_proximity = true;
+    pen.pressure = pen.tip_down ? stroke.pressure : 0.0;
+    pen.tilt_x_deg = stroke.tilt_deg;
+    return ScriptedPen{pen, stroke.style};
   };
-}
-
-platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config) {
-  platform::VoiceRecorderConfig recorder;
-  recorder.sample_rate_hz = config.sample_rate_hz;
-  recorder.max_duration_s = config.record_max_duration_s;
-  recorder.clip_level = static_cast<float>(config.record_clip_level);
-  recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
-  return recorder;
 }
 
 VirtualVisit::VirtualVisit(KioskEngine& engine, Hooks hooks, bool keep_output, double pen_rate_hz)
@@ -65,10 +56,10 @@ void VirtualVisit::Advance(double seconds, const PenScript& pen) {
   while (now_ns_ < end_ns) {
     if (pen) {
       while (next_pen_ns_ < now_ns_) {
-        if (auto sample = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
-          sample->time_ns = next_pen_ns_;
-          engine_.OnPen(*sample);
-          if (hooks_.on_pen) hooks_.on_pen(*sample);
+        if (auto scripted = pen(static_cast<double>(next_pen_ns_) * 1e-9)) {
+          scripted->reading.time_ns = next_pen_ns_;
+          engine_.OnPen(scripted->reading, scripted->style);
+          if (hooks_.on_pen) hooks_.on_pen(scripted->reading);
         }
         next_pen_ns_ += static_cast<std::int64_t>(pen_period_ns_);
       }

@@ -19,14 +19,20 @@
 #include <span>
 #include <vector>
 
+#include "kiosk/device_configs.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 
 namespace sas::kiosk {
 
+// One scripted pen report: the reading, and the probe style the script forces (a roll stroke).
+struct ScriptedPen {
+  platform::PenReading reading;
+  std::optional<synth::ProbeStyle> style;
+};
 // The pen at time t (seconds on the visit's clock), or nothing (no report at that time).
-using PenScript = std::function<std::optional<PenInput>(double t_s)>;
+using PenScript = std::function<std::optional<ScriptedPen>(double t_s)>;
 
 // A straight stroke at constant speed between two points given as fractions of the screen.
 struct PenStroke {
@@ -41,18 +47,16 @@ struct PenStroke {
   double hover_s = 0.0;
 };
 
-// The pen reports of `stroke` starting at `t0_s` on a screen of width x height pixels: a pen
-// (has_tilt), hovering until t0 + hover_s, tip down for duration_s from then, then lifted at the
-// end point with pressure 0.
+// The pen reports of `stroke` starting at `t0_s` on a screen of width x height pixels: a tablet
+// (its tilt counts, leaning along x), hovering until t0 + hover_s, tip down for duration_s from
+// then, then lifted at the end point with pressure 0.
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px);
-
-// The recorder settings the configuration asks for (the live kiosk's microphone uses the same).
-platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config);
 
 class VirtualVisit {
  public:
   struct Hooks {
-    std::function<void(const PenInput&)> on_pen;  // each pen sample, after the engine took it
+    // Each pen reading, after the engine took it.
+    std::function<void(const platform::PenReading&)> on_pen;
     std::function<void(std::vector<SessionAction>)> on_tick;  // the engine's actions each block
     std::function<void()> before_render;                      // after tick and microphone
     std::function<void(std::span<const float>)> on_block;     // each rendered block (clock moved)

@@ -60,7 +60,7 @@ float Lag(float value, float target, float dt_s, float tau_s) {
 
 DeformationField::DeformationField(const DeformationConfig& config) : config_(config) {}
 
-void DeformationField::SetTip(const StylusSample& sample) {
+void DeformationField::SetTip(const platform::PenReading& sample) {
   tip_ = sample;
 }
 
@@ -80,22 +80,25 @@ bool DeformationField::Advance(double now_s) {
   const float old_qx = drag_x_px_, old_qy = drag_y_px_;
   const float old_cx = centre_x_, old_cy = centre_y_;
 
+  // The dent is drawn in single precision: the screen's pixels need no more.
+  const float tip_x = static_cast<float>(tip_.x_px), tip_y = static_cast<float>(tip_.y_px);
   float travel_x = 0.0f, travel_y = 0.0f;
   if (tip_.tip_down) {
     if (was_down_) {
-      travel_x = tip_.x_px - centre_x_;
-      travel_y = tip_.y_px - centre_y_;
+      travel_x = tip_x - centre_x_;
+      travel_y = tip_y - centre_y_;
     } else {
       // A new touch: the dent starts under the tip with no stretch (a previous, still relaxing
       // dent elsewhere is dropped: the visitor's attention is at the new point).
       drag_x_px_ = drag_y_px_ = 0.0f;
     }
-    centre_x_ = tip_.x_px;
-    centre_y_ = tip_.y_px;
+    centre_x_ = tip_x;
+    centre_y_ = tip_y;
   }
   was_down_ = tip_.tip_down;
 
-  const float pressure = tip_.tip_down ? std::clamp(tip_.pressure, 0.0f, 1.0f) : 0.0f;
+  const float pressure =
+      tip_.tip_down ? std::clamp(static_cast<float>(tip_.pressure), 0.0f, 1.0f) : 0.0f;
   const float target = std::pow(pressure, config_.pressure_exponent) * config_.max_depth_px;
   const float tau = target > depth_px_ ? config_.press_time_s : config_.release_time_s;
   depth_px_ = Lag(depth_px_, target, dt, tau);

@@ -22,8 +22,8 @@
 // Pure CPU code with no SDL: the window uploads the patch, the software compositor blits it, and
 // the tests check the geometry directly.
 
+#include "platform/pen/pen_reading.h"
 #include "ui/image_rgba.h"
-#include "ui/stylus_sample.h"
 
 namespace sas::ui {
 
@@ -63,7 +63,7 @@ class DeformationField {
   explicit DeformationField(const DeformationConfig& config = {});
 
   // Latest stylus reading; takes effect at the next Advance.
-  void SetTip(const StylusSample& sample);
+  void SetTip(const platform::PenReading& sample);
   // Moves the model to `now_s` (monotonic seconds). Returns true when the picture changed since
   // the previous call (so a new frame is due); false once everything is at rest.
   bool Advance(double now_s);
@@ -87,7 +87,7 @@ class DeformationField {
 
  private:
   DeformationConfig config_;
-  StylusSample tip_{};
+  platform::PenReading tip_{};
   bool have_time_ = false;
   bool was_down_ = false;
   double last_s_ = 0.0;

@@ -122,7 +122,7 @@ struct KioskWindow::Impl {
   bool mouse_down = false;
   bool finger_active = false;
   SDL_FingerID finger = 0;
-  StylusSample last{};
+  platform::PenReading last{};
   bool chord_held = false;
   bool chord_fired = false;
   std::int64_t chord_since_ns = 0;
@@ -230,19 +230,19 @@ struct KioskWindow::Impl {
     });
   }
 
-  StylusSample Sample(float x_win, float y_win, bool down, float pressure, StylusSource source,
-                      std::int64_t t_ns) const {
-    StylusSample s;
+  platform::PenReading Sample(float x_win, float y_win, bool down, float pressure,
+                              platform::PenOrigin origin, std::int64_t t_ns) const {
+    platform::PenReading s;
     s.time_ns = t_ns;
     s.x_px = x_win * scale_x;
     s.y_px = y_win * scale_y;
     s.tip_down = down;
     s.pressure = down ? std::clamp(pressure, 0.0f, 1.0f) : 0.0f;
-    s.source = source;
+    s.origin = origin;
     return s;
   }
 
-  void Pointer(std::vector<UiEvent>& out, UiEvent::Kind kind, const StylusSample& s) {
+  void Pointer(std::vector<UiEvent>& out, UiEvent::Kind kind, const platform::PenReading& s) {
     UiEvent e;
     e.kind = kind;
     e.time_ns = s.time_ns;
@@ -338,13 +338,15 @@ struct KioskWindow::Impl {
         mouse_down = true;
         Pointer(out, UiEvent::Kind::kPointerDown,
                 Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), true,
-                       options.mouse_pressure, StylusSource::kMouse, Stamp(ev.button.timestamp)));
+                       options.mouse_pressure, platform::PenOrigin::kMouse,
+                       Stamp(ev.button.timestamp)));
         return;
       case SDL_MOUSEMOTION:
         if (ev.motion.which == SDL_TOUCH_MOUSEID || finger_active) return;
         Pointer(out, UiEvent::Kind::kPointerMove,
                 Sample(static_cast<float>(ev.motion.x), static_cast<float>(ev.motion.y), mouse_down,
-                       options.mouse_pressure, StylusSource::kMouse, Stamp(ev.motion.timestamp)));
+                       options.mouse_pressure, platform::PenOrigin::kMouse,
+                       Stamp(ev.motion.timestamp)));
         return;
       case SDL_MOUSEBUTTONUP:
         if (ev.button.which == SDL_TOUCH_MOUSEID || ev.button.button != SDL_BUTTON_LEFT) return;
@@ -352,7 +354,7 @@ struct KioskWindow::Impl {
         mouse_down = false;
         Pointer(out, UiEvent::Kind::kPointerUp,
                 Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), false,
-                       0.0f, StylusSource::kMouse, Stamp(ev.button.timestamp)));
+                       0.0f, platform::PenOrigin::kMouse, Stamp(ev.button.timestamp)));
         return;
       case SDL_FINGERDOWN:
       case SDL_FINGERMOTION:
@@ -377,7 +379,7 @@ struct KioskWindow::Impl {
                 ev.type == SDL_FINGERDOWN ? UiEvent::Kind::kPointerDown
                 : up                      ? UiEvent::Kind::kPointerUp
                                           : UiEvent::Kind::kPointerMove,
-                Sample(x, y, !up, pressure, StylusSource::kTouch, Stamp(f.timestamp)));
+                Sample(x, y, !up, pressure, platform::PenOrigin::kTouch, Stamp(f.timestamp)));
         return;
       }
       case SDL_KEYDOWN:

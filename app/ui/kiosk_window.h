@@ -8,10 +8,10 @@
 // 1 s) toggles the staff panel flag and is reported as an event.
 //
 // Input mapping: mouse (fallback: fixed pressure, no tilt) and the first touch finger (pressure
-// from the panel) become StylusSamples in screen pixels with CLOCK_MONOTONIC timestamps; mouse
-// events SDL synthesises from touch are dropped so one touch is one stroke. Keys 1-4 / 0 stand in
-// for the token switches, R for the record button. The pen (libinput, platform/pen) produces the
-// same StylusSample and bypasses this window.
+// from the panel) become pen readings (platform/pen/pen_reading.h) in screen pixels with
+// CLOCK_MONOTONIC timestamps; mouse events SDL synthesises from touch are dropped so one touch is
+// one stroke. Keys 1-4 / 0 stand in for the token switches, R for the record button. The pen
+// (libinput, platform/pen) produces the same reading and bypasses this window.
 //
 // Drawing: Present() draws a Frame (texture_view.h) — pictures as GPU textures uploaded once per
 // picture, the cross-fade with alpha blending, the small deformation patch as a streaming texture,

@@ -43,7 +43,7 @@ void TextureView::ShowPicture(std::shared_ptr<const ImageRgba> picture, double n
   dirty_ = true;
 }
 
-void TextureView::OnStylus(const StylusSample& sample) {
+void TextureView::OnStylus(const platform::PenReading& sample) {
   field_.SetTip(sample);
 }
 

@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <memory>
 
+#include "platform/pen/pen_reading.h"
 #include "ui/deformation_field.h"
 #include "ui/image_rgba.h"
 #include "ui/overlay.h"
-#include "ui/stylus_sample.h"
 
 namespace sas::ui {
 
@@ -48,7 +48,7 @@ class TextureView {
   // Shows `picture` (must be width x height: see ResizeToCover), cross-fading from the current
   // one when `cross_fade` and there is one. Throws std::invalid_argument on a size mismatch.
   void ShowPicture(std::shared_ptr<const ImageRgba> picture, double now_s, bool cross_fade = true);
-  void OnStylus(const StylusSample& sample);
+  void OnStylus(const platform::PenReading& sample);
   void SetOverlays(Overlays overlays);
   void ResetDeformation();  // idle reset: flat skin at once
   void Invalidate();        // the window lost its contents: draw again
@@ -78,7 +78,7 @@ class TextureView {
 // Draws `frame` into `out` (reshaped to the frame's size) exactly as the window would.
 void ComposeFrame(const Frame& frame, ImageRgba& out);
 
-// Monotonic nanoseconds (StylusSample::time_ns) to the seconds TextureView::Advance takes.
+// Monotonic nanoseconds (platform::PenReading::time_ns) to the seconds TextureView::Advance takes.
 inline double SecondsFromNs(std::int64_t time_ns) {
   return static_cast<double>(time_ns) * 1e-9;
 }

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "ui/stylus_sample.h"
+#include "platform/pen/pen_reading.h"
 
 namespace sas::ui {
 
@@ -23,7 +23,7 @@ struct UiEvent {
   };
   Kind kind = Kind::kPointerMove;
   std::int64_t time_ns = 0;  // CLOCK_MONOTONIC
-  StylusSample stylus{};
+  platform::PenReading stylus{};
   int token = -1;
   bool pressed = false;
 };

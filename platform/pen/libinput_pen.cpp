@@ -126,27 +126,27 @@ class LibinputPenSource final : public PenSource {
         type != LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY)
       return;
     libinput_event_tablet_tool* tool = libinput_event_get_tablet_tool_event(event);
-    PenEvent pen;
+    PenReading pen;
     pen.time_ns = static_cast<std::int64_t>(libinput_event_tablet_tool_get_time_usec(tool)) * 1000;
-    pen.x_px = static_cast<float>(libinput_event_tablet_tool_get_x_transformed(
-        tool, static_cast<uint32_t>(config_.screen_width_px)));
-    pen.y_px = static_cast<float>(libinput_event_tablet_tool_get_y_transformed(
-        tool, static_cast<uint32_t>(config_.screen_height_px)));
+    pen.origin = PenOrigin::kTablet;
+    pen.x_px = libinput_event_tablet_tool_get_x_transformed(
+        tool, static_cast<uint32_t>(config_.screen_width_px));
+    pen.y_px = libinput_event_tablet_tool_get_y_transformed(
+        tool, static_cast<uint32_t>(config_.screen_height_px));
     libinput_tablet_tool* t = libinput_event_tablet_tool_get_tool(tool);
-    pen.pressure = libinput_tablet_tool_has_pressure(t)
-                       ? static_cast<float>(libinput_event_tablet_tool_get_pressure(tool))
-                       : 0.0f;
+    pen.pressure =
+        libinput_tablet_tool_has_pressure(t) ? libinput_event_tablet_tool_get_pressure(tool) : 0.0;
     if (libinput_tablet_tool_has_tilt(t)) {
-      pen.tilt_x_deg = static_cast<float>(libinput_event_tablet_tool_get_tilt_x(tool));
-      pen.tilt_y_deg = static_cast<float>(libinput_event_tablet_tool_get_tilt_y(tool));
+      pen.tilt_x_deg = libinput_event_tablet_tool_get_tilt_x(tool);
+      pen.tilt_y_deg = libinput_event_tablet_tool_get_tilt_y(tool);
     }
     if (type == LIBINPUT_EVENT_TABLET_TOOL_TIP) {
       tip_down_ = libinput_event_tablet_tool_get_tip_state(tool) == LIBINPUT_TABLET_TOOL_TIP_DOWN;
-      pen.kind = tip_down_ ? PenEventKind::kTipDown : PenEventKind::kTipUp;
+      pen.kind = tip_down_ ? PenReadingKind::kTipDown : PenReadingKind::kTipUp;
     } else if (type == LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY) {
       in_proximity_ = libinput_event_tablet_tool_get_proximity_state(tool) ==
                       LIBINPUT_TABLET_TOOL_PROXIMITY_STATE_IN;
-      pen.kind = in_proximity_ ? PenEventKind::kProximityIn : PenEventKind::kProximityOut;
+      pen.kind = in_proximity_ ? PenReadingKind::kProximityIn : PenReadingKind::kProximityOut;
       if (!in_proximity_) tip_down_ = false;
     }
     pen.tip_down = tip_down_;

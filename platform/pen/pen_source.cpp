@@ -3,6 +3,16 @@
 
 namespace sas::platform {
 
+bool PenSource::Pop(PenReading& reading) {
+  if (!queue_.TryPop(reading)) return false;
+  // Whatever a backend queued, a reading leaves here meaning one thing for the screen and the
+  // probe: a tip out of range is up, and an up tip presses with nothing.
+  reading.origin = PenOrigin::kTablet;
+  reading.tip_down = reading.tip_down && reading.in_proximity;
+  if (!reading.tip_down) reading.pressure = 0.0;
+  return true;
+}
+
 std::string PenSource::DeviceName() const {
   std::lock_guard lock(presence_mutex_);
   return tablet_name_.empty() ? std::string(Name()) : tablet_name_;

@@ -1,12 +1,12 @@
 #pragma once
 // The pen: libinput tablet-tool events (SDL2 2.26 has no pen pressure or tilt; reference
 // platform.md) on their own thread, timestamped (CLOCK_MONOTONIC, libinput's clock), into an SPSC
-// queue the control thread drains. x/y come from libinput_event_tablet_tool_get_x/y_transformed
-// scaled to the screen size in pixels; pressure 0..1 after libinput's pressure offset; tilt in
-// degrees. When no tablet is present the source reports it cleanly ("missing") and the UI uses
-// SDL2 mouse/touch instead — that fallback lives in app/ui, not here. A tablet unplugged, plugged
-// back or plugged in for the first time after start is picked up by the same event thread (one
-// status line each). Status key "pen".
+// queue the control thread drains, one PenReading (pen_reading.h) each. x/y come from
+// libinput_event_tablet_tool_get_x/y_transformed scaled to the screen size in pixels; pressure
+// 0..1 after libinput's pressure offset; tilt in degrees. When no tablet is present the source
+// reports it cleanly ("missing") and the UI uses SDL2 mouse/touch instead — that fallback lives in
+// app/ui, not here. A tablet unplugged, plugged back or plugged in for the first time after start
+// is picked up by the same event thread (one status line each). Status key "pen".
 
 #include <atomic>
 #include <cstdint>
@@ -16,30 +16,11 @@
 
 #include "common/spsc_queue.h"
 #include "platform/device_status.h"
+#include "platform/pen/pen_reading.h"
 
 namespace sas::platform {
 
-enum class PenEventKind : std::uint8_t {
-  kMotion,  // axes changed (tip up or down)
-  kTipDown,
-  kTipUp,
-  kProximityIn,
-  kProximityOut,
-};
-
-struct PenEvent {
-  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC
-  PenEventKind kind = PenEventKind::kMotion;
-  float x_px = 0.0f;
-  float y_px = 0.0f;
-  float pressure = 0.0f;  // 0..1
-  float tilt_x_deg = 0.0f;
-  float tilt_y_deg = 0.0f;
-  bool tip_down = false;
-  bool in_proximity = false;
-};
-
-using PenQueue = SpscQueue<PenEvent, 1024>;
+using PenQueue = SpscQueue<PenReading, 1024>;
 
 struct PenConfig {
   int screen_width_px = 1920;
@@ -59,7 +40,9 @@ class PenSource {
   // and a tablet plugged in later is taken up.
   virtual bool Start(std::string* error) = 0;
   virtual void Stop() = 0;
-  bool Pop(PenEvent& event) { return queue_.TryPop(event); }
+  // The next reading, as every backend's readings leave the platform: a tablet's (its tilt
+  // counts), the tip down only in proximity, pressure 0 while the tip is up.
+  bool Pop(PenReading& reading);
   // CLOCK_MONOTONIC time the event thread last ran its loop (watchdog), 0 before start.
   std::int64_t HeartbeatNs() const { return heartbeat_ns_.load(std::memory_order_relaxed); }
   // False while no tablet is there (unplugged, or not yet plugged in): the kiosk then takes
@@ -113,9 +96,9 @@ class FakePenSource final : public PenSource {
     return waits_;
   }
   void Stop() override {}
-  bool Push(const PenEvent& event) {
-    heartbeat_ns_.store(event.time_ns, std::memory_order_relaxed);
-    return queue_.TryPush(event);
+  bool Push(const PenReading& reading) {
+    heartbeat_ns_.store(reading.time_ns, std::memory_order_relaxed);
+    return queue_.TryPush(reading);
   }
   void Unplug(DeviceStatusBoard& board) { DeviceRemoved(true, &board); }
   void Replug(DeviceStatusBoard& board) { DeviceAdded(true, "fake tablet", &board); }

@@ -69,7 +69,7 @@ int Snapshot(int argc, char** argv) {
   for (int i = 0; i <= kSteps; ++i) {
     const double t = i / 60.0;
     const float f = static_cast<float>(i) / kSteps;
-    sas::ui::StylusSample s;
+    sas::platform::PenReading s;
     s.time_ns = static_cast<std::int64_t>(t * 1e9);
     s.x_px = x0 + (x1 - x0) * f;
     s.y_px = y0 + (y1 - y0) * f;

@@ -20,7 +20,7 @@ inline std::string ReadAll(const std::string& path) {
 // and a stroke, which the fault-matrix rows then expect to find saved.
 inline void OneStroke(sas::kiosk::KioskEngine& engine) {
   engine.SetAudioRunning(true);
-  sas::kiosk::PenInput pen;
+  sas::platform::PenReading pen;
   pen.time_ns = 1'000'000'000;
   pen.x_px = 400;
   pen.y_px = 300;

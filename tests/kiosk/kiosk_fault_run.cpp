@@ -215,8 +215,12 @@ TEST_CASE(
   kiosk::KioskControl control(engine, {&output, pen, &switches}, log);
   std::int64_t now = platform::MonotonicNowNs();
   std::vector<float> played_mark;
-  const auto to_engine = [&](const platform::PenEvent& e) {
-    engine.OnPen(sas::test::PenInputFromTablet(e));
+  // The visitor's pen leans (a rub): each reading must reach the engine leaning as it was pushed.
+  constexpr double kTiltXDeg = 30.0, kTiltYDeg = 25.0;
+  int tilted_readings = 0;
+  const auto to_engine = [&](const platform::PenReading& e) {
+    if (e.HasTilt() && e.tilt_x_deg == kTiltXDeg && e.tilt_y_deg == kTiltYDeg) ++tilted_readings;
+    engine.OnPen(e);
   };
   // One pass of the loop and one audio block (2.67 ms of the fake device's thread).
   const auto pass = [&] {
@@ -224,13 +228,15 @@ TEST_CASE(
     control.Step(now, to_engine);
     platform::FakeAudioStreamBackend::Pump(device, 1);
   };
-  float x = 300.0f;
+  double x = 300.0;
   const auto stroke_sample = [&](bool down) {
-    platform::PenEvent e;
+    platform::PenReading e;
     e.time_ns = now;
-    e.x_px = (x += 4.0f);
-    e.y_px = 500.0f;
-    e.pressure = down ? 0.8f : 0.0f;
+    e.x_px = (x += 4.0);
+    e.y_px = 500.0;
+    e.pressure = down ? 0.8 : 0.0;
+    e.tilt_x_deg = kTiltXDeg;
+    e.tilt_y_deg = kTiltYDeg;
     e.tip_down = down;
     e.in_proximity = true;
     pen->Push(e);
@@ -248,6 +254,7 @@ TEST_CASE(
   std::size_t mark = device.played.size() / 2;
   stroke(60);
   CHECK(played_since(mark) > 1e-3);  // the kiosk sounds before any fault
+  CHECK(tilted_readings == 61);      // 60 readings down and the lift, all still leaning
 
   // ---- audio device lost and back
   {

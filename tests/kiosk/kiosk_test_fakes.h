@@ -1,14 +1,11 @@
 #pragma once
-// Fakes the kiosk's device tests share: an MCP2221A token board, and the tablet -> engine pen
-// mapping of the live loop.
+// Fakes the kiosk's device tests share: an MCP2221A token board.
 
 #include <array>
 #include <atomic>
 #include <cstdint>
 
-#include "kiosk/kiosk_engine.h"
 #include "platform/hid/mcp2221.h"
-#include "platform/pen/pen_source.h"
 
 namespace sas::test {
 
@@ -44,18 +41,5 @@ class TokenBoardHid final : public platform::HidTransport {
   TokenBoard* board_;
   std::uint8_t last_ = 0;
 };
-
-// A tablet report as the live loop hands it to the engine (app/live_kiosk.cpp): the tip counts as
-// down only in proximity, pressure 0 when up, tilt present.
-inline kiosk::PenInput PenInputFromTablet(const platform::PenEvent& e) {
-  kiosk::PenInput input;
-  input.time_ns = e.time_ns;
-  input.x_px = e.x_px;
-  input.y_px = e.y_px;
-  input.tip_down = e.tip_down && e.in_proximity;
-  input.pressure = input.tip_down ? e.pressure : 0.0;
-  input.has_tilt = true;
-  return input;
-}
 
 }  // namespace sas::test

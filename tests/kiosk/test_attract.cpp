@@ -8,7 +8,7 @@
 #include "kiosk/kiosk_engine.h"
 
 using sas::kiosk::KioskEngine;
-using sas::kiosk::PenInput;
+using sas::platform::PenReading;
 
 namespace {
 
@@ -42,8 +42,8 @@ struct Run {
     }
     return std::sqrt(sum / static_cast<double>(n));
   }
-  PenInput Pen(double x, bool down) const {
-    PenInput pen;
+  PenReading Pen(double x, bool down) const {
+    PenReading pen;
     pen.time_ns = t;
     pen.x_px = x;
     pen.y_px = 540.0;

@@ -25,8 +25,8 @@
 
 using sas::kiosk::CueEvent;
 using sas::kiosk::KioskEngine;
-using sas::kiosk::PenInput;
 using sas::kiosk::VirtualVisit;
+using sas::platform::PenReading;
 
 namespace {
 
@@ -106,15 +106,15 @@ double ToneShare(const std::vector<float>& stereo, std::size_t from, std::size_t
 
 // A pen held still on the middle of the picture for `seconds`, then lifted.
 sas::kiosk::PenScript RestingPen(double t0_s, double seconds) {
-  return [=](double t_s) -> std::optional<PenInput> {
-    PenInput pen;
+  return [=](double t_s) -> std::optional<sas::kiosk::ScriptedPen> {
+    PenReading pen;
     pen.time_ns = static_cast<std::int64_t>(std::llround(t_s * 1e9));
     pen.x_px = 960.0 + 0.5 * std::sin(t_s);  // a hand's tremor: well under the rest radius
     pen.y_px = 540.0;
     pen.tip_down = t_s < t0_s + seconds;
     pen.pressure = pen.tip_down ? 0.5 : 0.0;
-    pen.has_tilt = true;
-    return pen;
+    pen.origin = sas::platform::PenOrigin::kTablet;
+    return sas::kiosk::ScriptedPen{pen, {}};
   };
 }
 

@@ -207,9 +207,7 @@ struct Rig {
   // One pass of the loop and one audio block of the fake device.
   void Pass() {
     now += 2667 * 1000;
-    control->Step(now, [this](const platform::PenEvent& e) {
-      engine->OnPen(sas::test::PenInputFromTablet(e));
-    });
+    control->Step(now, [this](const platform::PenReading& e) { engine->OnPen(e); });
     platform::FakeAudioStreamBackend::Pump(device, 1);
   }
   // A stroke through the tablet when it is connected, else through the mouse (the live loop
@@ -218,7 +216,7 @@ struct Rig {
     for (int i = 0; i <= 20; ++i) {
       const bool down = i < 20;
       if (control->PointerActive()) {
-        kiosk::PenInput input;
+        platform::PenReading input;
         input.time_ns = now;
         input.x_px = 300.0 + 4.0 * i;
         input.y_px = 400.0;
@@ -226,11 +224,11 @@ struct Rig {
         input.pressure = down ? 0.8 : 0.0;
         engine->OnPen(input);
       } else {
-        platform::PenEvent e;
+        platform::PenReading e;
         e.time_ns = now;
-        e.x_px = 300.0f + 4.0f * static_cast<float>(i);
-        e.y_px = 400.0f;
-        e.pressure = down ? 0.8f : 0.0f;
+        e.x_px = 300.0 + 4.0 * i;
+        e.y_px = 400.0;
+        e.pressure = down ? 0.8 : 0.0;
         e.tip_down = down;
         e.in_proximity = true;
         pen->Push(e);
@@ -369,11 +367,11 @@ std::vector<DeviceRow> DeviceRows() {
        DeviceState::kLost,
        "warn pen: lost: pen tablet 'fake tablet' unplugged",
        [](Rig& rig) {
-         platform::PenEvent e;
+         platform::PenReading e;
          e.time_ns = rig.now;
-         e.x_px = 500.0f;
-         e.y_px = 500.0f;
-         e.pressure = 0.8f;
+         e.x_px = 500.0;
+         e.y_px = 500.0;
+         e.pressure = 0.8;
          e.tip_down = true;
          e.in_proximity = true;
          rig.pen->Push(e);
@@ -625,14 +623,14 @@ struct SignalRow {
   int strokes = 0;
   const auto stroke = [&] {
     for (int i = 0; i <= 10; ++i) {
-      kiosk::PenInput pen;
+      platform::PenReading pen;
       pen.time_ns = now;
       pen.x_px = 300.0 + 5.0 * i;
       pen.y_px = 300.0;
       pen.tip_down = i < 10;
       pen.pressure = pen.tip_down ? 0.8 : 0.0;
       engine.OnPen(pen);
-      control.Step(now += 3 * kMs, [](const platform::PenEvent&) {});
+      control.Step(now += 3 * kMs, [](const platform::PenReading&) {});
       output.RenderBlocks(1);
     }
     ++strokes;
@@ -665,7 +663,7 @@ struct SignalRow {
       kiosk::LoadCounters(counters_path, {"wooden_board"}, &disk, &error);
       on_disk_equal = disk == engine.session().counters() ? 1 : 0;
     }
-    control.Step(now += 3 * kMs, [](const platform::PenEvent&) {});
+    control.Step(now += 3 * kMs, [](const platform::PenReading&) {});
   }
   if (!stopped) stroke();  // the kiosk runs on and counts
   control.Shutdown();      // the stop that comes later (or now)

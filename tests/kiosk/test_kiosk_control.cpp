@@ -6,7 +6,9 @@
 
 #include <catch2/catch.hpp>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -36,16 +38,50 @@ kiosk::UsageCounters OnDisk(const std::string& path) {
 
 void Stroke(kiosk::KioskEngine& engine, std::int64_t t_ns) {
   for (int i = 0; i < 3; ++i) {
-    kiosk::PenInput pen;
+    platform::PenReading pen;
     pen.time_ns = t_ns + i * 3 * kMs;
     pen.x_px = 500.0 + 20.0 * i;
     pen.y_px = 500.0;
     pen.tip_down = i < 2;
     pen.pressure = pen.tip_down ? 0.8 : 0.0;
-    pen.has_tilt = true;
+    pen.origin = platform::PenOrigin::kTablet;
     engine.OnPen(pen);
   }
 }
+
+kiosk::KioskEngineOptions VirtualClockOptions() {
+  kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = "/nonexistent";
+  return options;
+}
+
+struct QuietLogger : platform::Logger {
+  QuietLogger() { SetEchoToStderr(false); }
+};
+
+// A kiosk with offline audio, keys for tokens and `pen_source` as its tablet, under the control
+// loop.
+struct TabletRig {
+  explicit TabletRig(std::unique_ptr<platform::FakePenSource> pen_source)
+      : engine(VirtualClockOptions()),
+        output(engine.audio(), platform::AudioOutputConfig{}),
+        fake(pen_source.get()),
+        pen(platform::OpenPen({}, board, std::move(pen_source))),
+        control(engine, {&output, pen.get(), &switches}, log) {
+    REQUIRE(output.Start());
+    REQUIRE(pen != nullptr);
+  }
+
+  kiosk::KioskEngine engine;
+  platform::OfflineAudioOutput output;
+  platform::SwitchInputs switches;
+  QuietLogger log;
+  platform::DeviceStatusBoard board{log};
+  platform::FakePenSource* fake;
+  std::unique_ptr<platform::PenSource> pen;
+  kiosk::KioskControl control;
+};
 
 }  // namespace
 
@@ -66,7 +102,7 @@ TEST_CASE(
   platform::Logger log;
   log.SetEchoToStderr(false);
   kiosk::KioskControl control(engine, {&output, nullptr, &switches}, log);
-  const auto on_pen = [](const platform::PenEvent&) {};
+  const auto on_pen = [](const platform::PenReading&) {};
 
   std::int64_t now = 1000 * kMs;
   Stroke(engine, now);
@@ -144,39 +180,24 @@ TEST_CASE(
     "control: with no tablet at start mouse/touch drive the kiosk, and a tablet plugged in later "
     "takes over with its events reaching the loop",
     "[kiosk]") {
-  kiosk::KioskEngineOptions options;
-  options.virtual_clock = true;
-  options.cues_dir = "/nonexistent";
-  kiosk::KioskEngine engine(options);
-  platform::AudioOutputConfig output_config;
-  platform::OfflineAudioOutput output(engine.audio(), output_config);
-  REQUIRE(output.Start());
-  platform::SwitchInputs switches;
-  platform::Logger log;
-  log.SetEchoToStderr(false);
-  platform::DeviceStatusBoard board(log);
-  auto pen = platform::OpenPen(
-      {}, board, std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
-  REQUIRE(pen != nullptr);
-  auto* fake = static_cast<platform::FakePenSource*>(pen.get());
-  kiosk::KioskControl control(engine, {&output, pen.get(), &switches}, log);
-  std::vector<platform::PenEvent> seen;
-  const auto on_pen = [&](const platform::PenEvent& e) { seen.push_back(e); };
+  TabletRig rig(std::make_unique<platform::FakePenSource>(false, /*waits_for_tablet=*/true));
+  std::vector<platform::PenReading> seen;
+  const auto on_pen = [&](const platform::PenReading& e) { seen.push_back(e); };
 
-  control.Step(1000 * kMs, on_pen);
-  CHECK(control.PointerActive());
-  CHECK(board.Get("pen").state == platform::DeviceState::kMissing);
+  rig.control.Step(1000 * kMs, on_pen);
+  CHECK(rig.control.PointerActive());
+  CHECK(rig.board.Get("pen").state == platform::DeviceState::kMissing);
 
-  fake->Replug(board);
-  platform::PenEvent e;
+  rig.fake->Replug(rig.board);
+  platform::PenReading e;
   e.time_ns = 1001 * kMs;
-  e.kind = platform::PenEventKind::kTipDown;
+  e.kind = platform::PenReadingKind::kTipDown;
   e.tip_down = e.in_proximity = true;
-  e.pressure = 0.5f;
-  REQUIRE(fake->Push(e));
-  control.Step(1002 * kMs, on_pen);
-  CHECK_FALSE(control.PointerActive());
-  CHECK(board.Get("pen").state == platform::DeviceState::kOk);
+  e.pressure = 0.5;
+  REQUIRE(rig.fake->Push(e));
+  rig.control.Step(1002 * kMs, on_pen);
+  CHECK_FALSE(rig.control.PointerActive());
+  CHECK(rig.board.Get("pen").state == platform::DeviceState::kOk);
   REQUIRE(seen.size() == 1);
   CHECK(seen[0].time_ns == 1001 * kMs);
 }
@@ -220,4 +241,52 @@ TEST_CASE(
                  Catch::EndsWith("(using the built-in defaults)"));
   CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
              Catch::Contains(" not used, defaults: " + path + ":2: session.idle_timeout_s: "));
+}
+
+namespace {
+
+// One stroke of a tablet pen leaning `tilt_x_deg`, on a fresh kiosk, rendered block by block:
+// pushed into the pen source and carried by the control loop (`through_pen_source`), or handed to
+// the engine directly as the readings the source hands out.
+std::vector<float> TabletStroke(double tilt_x_deg, bool through_pen_source) {
+  TabletRig rig(std::make_unique<platform::FakePenSource>(true));
+  const platform::AudioOutputConfig output_config;
+  const auto block_ns = static_cast<std::int64_t>(
+      std::llround(output_config.frames_per_buffer * 1e9 / output_config.sample_rate_hz));
+  for (int i = 0; i < 80; ++i) {
+    const std::int64_t now = i * block_ns;
+    platform::PenReading reading;
+    reading.time_ns = now;
+    reading.x_px = 400.0 + 6.0 * i;
+    reading.y_px = 500.0;
+    reading.tip_down = i < 60;
+    reading.in_proximity = true;
+    reading.pressure = reading.tip_down ? 0.7 : 0.0;
+    reading.tilt_x_deg = tilt_x_deg;
+    if (through_pen_source) {
+      REQUIRE(rig.fake->Push(reading));
+      rig.control.Step(now, [&](const platform::PenReading& r) { rig.engine.OnPen(r); });
+    } else {
+      reading.origin = platform::PenOrigin::kTablet;
+      rig.engine.OnPen(reading);
+      rig.control.Step(now, [](const platform::PenReading&) {});
+    }
+    rig.output.RenderBlocks(1);
+  }
+  return rig.output.buffer();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "control: a leaning tablet's tilt reaches the probe - a stroke through the pen source and "
+    "the loop sounds exactly as its readings do handed to the engine, and unlike the same stroke "
+    "upright",
+    "[kiosk]") {
+  const std::vector<float> leaning = TabletStroke(50.0, true);
+  const std::vector<float> upright = TabletStroke(0.0, true);
+  const std::vector<float> direct = TabletStroke(50.0, false);
+  REQUIRE(leaning.size() == direct.size());
+  CHECK(leaning == direct);
+  CHECK(leaning != upright);
 }

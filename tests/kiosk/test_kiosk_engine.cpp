@@ -15,7 +15,7 @@
 
 using sas::kiosk::KioskEngine;
 using sas::kiosk::KioskEngineOptions;
-using sas::kiosk::PenInput;
+using sas::platform::PenReading;
 using sas::test::AllDontDump;
 using sas::test::VmFlagsOf;
 
@@ -47,14 +47,14 @@ double Rms(const std::vector<float>& stereo, std::size_t from, std::size_t to) {
   return std::sqrt(sum / static_cast<double>(to - from));
 }
 
-PenInput Pen(std::int64_t t_ns, double x, double y, bool down) {
-  PenInput pen;
+PenReading Pen(std::int64_t t_ns, double x, double y, bool down) {
+  PenReading pen;
   pen.time_ns = t_ns;
   pen.x_px = x;
   pen.y_px = y;
   pen.pressure = down ? 0.8 : 0.0;
   pen.tip_down = down;
-  pen.has_tilt = true;
+  pen.origin = sas::platform::PenOrigin::kTablet;
   return pen;
 }
 
@@ -315,9 +315,9 @@ TEST_CASE(
     play(40);
     t += 40 * kBlockNs;
     for (int i = 0; i < 150; ++i) {  // a hard, fast scrape at full pressure
-      PenInput pen = Pen(t, 300 + 8.0 * i, 300 + 2.0 * i, true);
+      PenReading pen = Pen(t, 300 + 8.0 * i, 300 + 2.0 * i, true);
       pen.pressure = 1.0;
-      pen.tilt_deg = 0.0;
+      pen.tilt_x_deg = 0.0;
       engine.OnPen(pen);
       play(1);
       t += kBlockNs;

@@ -39,18 +39,18 @@ TEST_CASE("a present tablet delivers its timestamped events in order", "[platfor
   REQUIRE(pen != nullptr);
   CHECK(board.Get("pen").state == DeviceState::kOk);
   for (int i = 0; i < 10; ++i) {
-    PenEvent e;
+    PenReading e;
     e.time_ns = 1000 + i;
-    e.x_px = static_cast<float>(i);
-    e.pressure = 0.1f * static_cast<float>(i);
-    e.kind = i == 0 ? PenEventKind::kTipDown : PenEventKind::kMotion;
+    e.x_px = i;
+    e.pressure = 0.1 * i;
+    e.kind = i == 0 ? PenReadingKind::kTipDown : PenReadingKind::kMotion;
     REQUIRE(raw->Push(e));
   }
-  PenEvent e;
+  PenReading e;
   for (int i = 0; i < 10; ++i) {
     REQUIRE(pen->Pop(e));
     CHECK(e.time_ns == 1000 + i);
-    CHECK(e.x_px == static_cast<float>(i));
+    CHECK(e.x_px == i);
   }
   CHECK_FALSE(pen->Pop(e));
   CHECK(pen->HeartbeatNs() == 1009);
@@ -99,7 +99,7 @@ TEST_CASE("pen: a tablet absent at start is taken up when plugged in later, with
   REQUIRE(logger.Count() == 2);
   CHECK(logger.Recent().back().Text() == "info pen: ok: pen tablet 'fake tablet' plugged in");
   CHECK(pen->DeviceName() == "fake tablet");
-  PenEvent e;
+  PenReading e;
   e.time_ns = 42;
   REQUIRE(raw->Push(e));
   REQUIRE(pen->Pop(e));

@@ -9,12 +9,12 @@
 #include "ui/image_rgba.h"
 #include "ui/texture_view.h"
 
+using sas::platform::PenReading;
 using sas::ui::DeformationConfig;
 using sas::ui::DeformationField;
 using sas::ui::ImageRgba;
 using sas::ui::PixelRect;
 using sas::ui::Rgba;
-using sas::ui::StylusSample;
 
 namespace {
 
@@ -22,8 +22,8 @@ constexpr int kW = 400;
 constexpr int kH = 300;
 constexpr double kFrame = 1.0 / 60.0;
 
-StylusSample Tip(float x, float y, float pressure, bool down = true) {
-  StylusSample s;
+PenReading Tip(float x, float y, float pressure, bool down = true) {
+  PenReading s;
   s.x_px = x;
   s.y_px = y;
   s.pressure = pressure;

@@ -262,7 +262,7 @@ TEST_CASE("a mouse drag becomes pointer down, moves and up at the pushed pixel p
   CHECK(events[4].kind == UiEvent::Kind::kPointerUp);
   CHECK_FALSE(events[4].stylus.tip_down);
   CHECK(events[4].stylus.tilt_x_deg == 0.0f);
-  CHECK(events[4].stylus.source == sas::ui::StylusSource::kMouse);
+  CHECK(events[4].stylus.origin == sas::platform::PenOrigin::kMouse);
   for (std::size_t i = 1; i < events.size(); ++i) CHECK(events[i].time_ns >= events[i - 1].time_ns);
   const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                           std::chrono::steady_clock::now().time_since_epoch())
@@ -303,7 +303,7 @@ TEST_CASE(
   CHECK(events[0].stylus.x_px == Approx(0.25f * w));
   CHECK(events[0].stylus.y_px == Approx(0.5f * h));
   CHECK(events[0].stylus.pressure == Approx(0.3f));
-  CHECK(events[0].stylus.source == sas::ui::StylusSource::kTouch);
+  CHECK(events[0].stylus.origin == sas::platform::PenOrigin::kTouch);
   CHECK(events[1].stylus.pressure == Approx(0.9f));
   CHECK(events[1].stylus.x_px == Approx(0.5f * w));
   CHECK(events[2].kind == UiEvent::Kind::kPointerUp);

@@ -6,9 +6,9 @@
 #include "ui/overlay.h"
 #include "ui/texture_view.h"
 
+using sas::platform::PenReading;
 using sas::ui::ImageRgba;
 using sas::ui::Rgba;
-using sas::ui::StylusSample;
 using sas::ui::TextureView;
 
 namespace {
@@ -20,8 +20,8 @@ std::shared_ptr<const ImageRgba> Solid(std::uint8_t v) {
   return std::make_shared<const ImageRgba>(kW, kH, Rgba{v, v, v, 255});
 }
 
-StylusSample Tip(float x, float y, float pressure, bool down, double t_s) {
-  StylusSample s;
+PenReading Tip(float x, float y, float pressure, bool down, double t_s) {
+  PenReading s;
   s.time_ns = static_cast<std::int64_t>(t_s * 1e9);
   s.x_px = x;
   s.y_px = y;

@@ -115,20 +115,14 @@ class Screens {
   }
 
   void Pen(double x, double y, bool down) {
-    sas::kiosk::PenInput pen;
+    sas::platform::PenReading pen;
     pen.time_ns = t_ns_;
     pen.x_px = x;
     pen.y_px = y;
     pen.pressure = down ? 0.8 : 0.0;
     pen.tip_down = down;
     engine_.OnPen(pen);
-    sas::ui::StylusSample s;
-    s.time_ns = t_ns_;
-    s.x_px = static_cast<float>(x);
-    s.y_px = static_cast<float>(y);
-    s.tip_down = down;
-    s.pressure = down ? 0.8f : 0.0f;
-    view_.OnStylus(s);
+    view_.OnStylus(pen);
   }
 
   // Draws frames on this window instead of in software (the Xvfb run).

@@ -1,0 +1,78 @@
+#pragma once
+// The staff panel's logic (control thread): what it says and what its buttons do. The panel opens
+// over the picture on the staff chord (Session decides when it is open). It lists the version,
+// every device's status, the audio load, the pen-to-sound latency, the speaker's dose, the switches
+// and tokens, the microphone, the pen, the usage counters and the configuration file, and has one
+// row of buttons: test tone, transducer sweep, low-vibration mode, volume and vibration steps. The
+// drawing (text layout, button rectangles) belongs to the app's staff panel view; nothing here
+// knows pixels beyond the pen's position it reports.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_output.h"
+#include "platform/device_status.h"
+#include "platform/input/switch_factory.h"
+#include "platform/input/token_selector.h"
+#include "platform/log/log.h"
+#include "platform/pen/pen_reading.h"
+
+namespace sas::kiosk {
+
+// The buttons, in their order along the panel's bottom edge.
+enum class StaffButton {
+  kTone,
+  kSweep,
+  kLowVibration,
+  kVolumeDown,
+  kVolumeUp,
+  kVibrationDown,
+  kVibrationUp,
+  kCount
+};
+inline constexpr int kStaffButtonCount = static_cast<int>(StaffButton::kCount);
+
+// A button's label; the low-vibration button says whether the mode is on.
+const char* StaffButtonLabel(StaffButton button, bool low_vibration);
+
+// What the panel reports on, read when its text is rebuilt.
+struct StaffPanelInputs {
+  const KioskEngine* engine;
+  const platform::AudioOutput* output;
+  const platform::DeviceStatusBoard* board;
+  const platform::SwitchInputs* switches;
+  const platform::TokenSelector* selector;
+  bool record_down;
+  platform::PenReading pen;  // the last reading, from whichever input
+  std::string config_line;   // ConfigStatusLine
+  int buffer_frames;
+  int sample_rate_hz;
+};
+
+// One line of the panel's text; `warning` lines (the title, a device not ok) stand out.
+struct StaffPanelLine {
+  std::string text;
+  bool warning = false;
+  bool operator==(const StaffPanelLine&) const = default;
+};
+
+// The panel's text, top to bottom.
+std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in);
+
+// The buttons' actions. A press repeats only after kRepeatNs, so a pen resting on a button does not
+// step the volume at the pen's report rate.
+class StaffPanel {
+ public:
+  static constexpr std::int64_t kRepeatNs = 500'000'000;
+
+  // The pen pressed `button` at `time_ns`: the engine acts (and restarts the panel's timeout) and
+  // the journal gets one line. False when ignored as a repeat.
+  bool Press(StaffButton button, std::int64_t time_ns, KioskEngine& engine, platform::Logger& log);
+
+ private:
+  std::int64_t last_press_ns_ = 0;
+};
+
+}  // namespace sas::kiosk
