@@ -1,6 +1,7 @@
 // Contact benchmark: run time against error for every contact scheme × contact
 // oversampling × case, the full kiosk scene's cost, the idle scene's cost, a denormal ring-down
-// check, and (--stress N) the long randomised stress test.
+// check, the default scheme against the explicit reference (explicit_front.cpp), and (--stress N)
+// the long randomised stress test.
 //
 // Cases and error metrics:
 //   impact   m = 10 g, α = 1.5, v_in = 1 m/s against a rigid wall, k = 1e6, 1e8, 1e10, 1e12 N/m^α,
@@ -34,10 +35,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <numbers>
 #include <opencv2/core.hpp>
@@ -49,11 +48,10 @@
 
 #include "../support/fft.h"
 #include "../synth/stress_sets.h"
-#include "explicit_reference.h"
-#include "files/contact_scheme_names.h"
+#include "contact_bench_common.h"
+#include "explicit_front.h"
 #include "kiosk/gesture.h"
 #include "synth/contact.h"
-#include "synth/contact_kernel.h"
 #include "synth/hunt_crossley_closed_form.h"
 #include "synth/scene.h"
 #include "tools/builtin_profiles.h"
@@ -63,8 +61,13 @@ namespace {
 
 using namespace sas;
 using Clock = std::chrono::steady_clock;
+using bench::BestSeconds;
+using bench::CpuSeconds;
+using bench::kFs;
+using bench::SchemeName;
+using bench::Sci;
+using bench::SteelPlate32;
 
-constexpr double kFs = 48000.0;
 constexpr std::array<synth::ContactScheme, 4> kAllSchemes = {
     synth::ContactScheme::kExplicitPassive, synth::ContactScheme::kTrapezoidNewton,
     synth::ContactScheme::kDiscreteGradient, synth::ContactScheme::kEnergyQuadratised};
@@ -84,31 +87,6 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-// CPU time of this thread (s): the machine is shared, and time spent preempted is not the
-// code's cost.
-double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Best of `reps` runs after one warm-up run.
-template <class F>
-double BestSeconds(int reps, F&& run) {
-  if (reps <= 0) {  // just run it, untimed
-    run();
-    return 0.0;
-  }
-  run();
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < reps; ++r) {
-    const double start = CpuSeconds();
-    run();
-    best = std::min(best, CpuSeconds() - start);
-  }
-  return best;
-}
-
 // One row of the CSV.
 struct Row {
   std::string case_name;  // impact | friction | scene
@@ -122,10 +100,6 @@ struct Row {
   double waveform_error = 0.0;  // scene: relative RMS waveform difference (chaotic: no limit)
   bool reference = false;       // the converged reference itself (error 0 by definition)
 };
-
-std::string SchemeName(synth::ContactScheme s) {
-  return kiosk::ContactSchemeName(s);
-}
 
 // ---------------------------------------------------------------- impact
 
@@ -291,42 +265,6 @@ double BandEnergyError(const std::vector<float>& y, const std::vector<float>& re
     }
   }
   return bands > 0 ? std::sqrt(sum / bands) : 0.0;
-}
-
-// metal.toml's steel plate (250 x 180 x 3 mm, E = 200 GPa, ρ = 7850, ν = 0.3, η = 8e-4, contact
-// at (0.37 a, 0.41 b), pickup at (0.21 a, 0.67 b)) with its first 32 modes of |gain| >= 0.05, by
-// the same thin-plate formula (Leissa, NASA SP-160) and rules as the file's comment: f_mn =
-// (π/2) h sqrt(E / (12 ρ (1 - ν²))) ((m/a)² + (n/b)²), τ = 1 / (π f η), modal mass ρ h a b / 4
-// over max(shape², 0.09) at the contact, gain = shape at the pickup.
-synth::ResonatorParams SteelPlate32() {
-  const double e_mod = 200e9, rho = 7850.0, nu = 0.3, h = 0.003, a = 0.25, b = 0.18, eta = 8e-4;
-  const double c = 0.5 * std::numbers::pi * h * std::sqrt(e_mod / (12.0 * rho * (1.0 - nu * nu)));
-  struct Mode {
-    double f, mass, gain;
-  };
-  std::vector<Mode> modes;
-  for (int m = 1; m <= 30; ++m) {
-    for (int n = 1; n <= 30; ++n) {
-      const double f = c * ((m / a) * (m / a) + (n / b) * (n / b));
-      if (f >= 0.45 * kFs) continue;
-      const double shape_contact =
-          std::sin(m * std::numbers::pi * 0.37) * std::sin(n * std::numbers::pi * 0.41);
-      const double gain =
-          std::sin(m * std::numbers::pi * 0.21) * std::sin(n * std::numbers::pi * 0.67);
-      if (std::fabs(gain) < 0.05) continue;
-      const double mass = rho * h * a * b / 4.0 / std::max(shape_contact * shape_contact, 0.09);
-      modes.push_back({f, mass, gain});
-    }
-  }
-  std::sort(modes.begin(), modes.end(), [](const Mode& x, const Mode& y) { return x.f < y.f; });
-  synth::ResonatorParams params;
-  params.mode_count = std::min<int>(32, static_cast<int>(modes.size()));
-  for (int i = 0; i < params.mode_count; ++i) {
-    const Mode& m = modes[static_cast<std::size_t>(i)];
-    params.modes[static_cast<std::size_t>(i)] =
-        synth::ModeParams{m.f, 1.0 / (std::numbers::pi * m.f * eta), m.mass, m.gain};
-  }
-  return params;
 }
 
 std::vector<kiosk::TimedCommand> RubCommands(double velocity) {
@@ -505,449 +443,6 @@ void WritePlot(const std::string& path, const std::vector<Panel>& panels,
   cv::imwrite(path, img);
 }
 
-std::string Sci(double v, int digits = 1) {
-  if (!(v > 0)) return v == 0 ? "0" : "-";
-  char s[32];
-  std::snprintf(s, sizeof s, "%.*e", digits, v);
-  return s;
-}
-
-// ---------------------------------------------------------------- explicit reference front
-
-// The body the probe hits: none (a rigid wall) or metal.toml's 32-mode steel plate made 1e6 times
-// heavier (every modal mass 1e6 x): its modes are computed like the kiosk's, so the cost is a
-// real resonator's, while the wall hardly moves (the restitution stays the closed form's to
-// ~1e-6).
-synth::ResonatorParams HeavyPlate() {
-  synth::ResonatorParams p = SteelPlate32();
-  for (int i = 0; i < p.mode_count; ++i) p.modes[static_cast<std::size_t>(i)].mass_kg *= 1e6;
-  return p;
-}
-
-struct FrontCase {
-  double k, mu_v;
-};
-struct FrontPoint {
-  double error = 0.0;  // worst relative restitution error over the phases
-  double ns_per_contact = 0.0;
-  double steps = 0.0;        // contact steps (sub-steps) per contact, mean over phases
-  double guard_share = 0.0;  // reference: bisection iterations per step
-};
-
-// The synth's kernel (StepContactSample, the scene's per-sample code) on one impact: set up once,
-// each phase from rest.
-FrontPoint KernelFront(const FrontCase& c, const synth::ResonatorParams& body,
-                       synth::ContactScheme scheme, int oversample, int phases, int reps) {
-  const double mass = 0.01, v_in = 1.0, alpha = 1.5;
-  synth::ImpactParams params;
-  params.scheme = scheme;
-  params.stiffness = c.k;
-  params.dissipation_s_per_m = c.mu_v / v_in;
-  params.shape_alpha = alpha;
-  params.oversample = oversample;
-  synth::ContactKernelConfig config;
-  config.scheme = scheme;
-  config.impact.Set(params);
-  config.friction.enabled = false;
-  config.probe_mass_kg = mass;
-  config.SetTiming(kFs, synth::ChooseContactOversample(params, mass, kFs));
-  synth::ModalState modes;
-  const bool adaptive = oversample <= 0;
-  modes.Prepare(body, kFs, config.substeps, false, adaptive);
-  config.adaptive = adaptive && modes.level_count > 1;
-  config.SetLevels(params, modes, kFs);
-  const double exact = synth::HuntCrossleyRestitution(c.mu_v);
-  FrontPoint point;
-  double steps = 0.0;
-  auto run_all = [&](bool measure) {
-    for (int p = 0; p < phases; ++p) {
-      const double phase = (p + 0.5) / phases;
-      modes.Reset();
-      synth::ProbeDynamics probe;
-      probe.active = true;
-      probe.height_m = phase * v_in / kFs;
-      probe.velocity_mps = -v_in;
-      const synth::SampleDrive drive;
-      bool started = false;
-      for (long n = 0; n < static_cast<long>(kFs); ++n) {
-        synth::StepContactSample(config, modes, probe, drive);
-        if (measure) steps += probe.substeps_used;
-        if (probe.touched) started = true;
-        if (started && !probe.touched && probe.compression_m < 0.0 && probe.velocity_mps > 0.0)
-          break;
-      }
-      if (measure) {
-        const double e = probe.velocity_mps / v_in;
-        point.error = std::max(point.error, std::fabs(e - exact) / exact);
-      }
-    }
-  };
-  run_all(true);
-  point.steps = steps / phases;
-  point.ns_per_contact = BestSeconds(reps, [&] { run_all(false); }) * 1e9 / phases;
-  return point;
-}
-
-// The explicit reference (explicit_reference.h) on the same impact at fs = oversample x 48 kHz.
-FrontPoint ReferenceFront(const FrontCase& c, const synth::ResonatorParams& body_params,
-                          int oversample, int phases, int reps) {
-  const double mass = 0.01, v_in = 1.0;
-  const double fs = kFs * oversample, t = 1.0 / fs;
-  bench::SdtBody body, probe;
-  {
-    std::array<double, bench::SdtBody::kMax> f{}, d{}, m{}, g{};
-    for (int i = 0; i < body_params.mode_count; ++i) {
-      const auto& mode = body_params.modes[static_cast<std::size_t>(i)];
-      f[static_cast<std::size_t>(i)] = mode.frequency_hz;
-      d[static_cast<std::size_t>(i)] = mode.decay_s;
-      m[static_cast<std::size_t>(i)] = mode.mass_kg;
-      g[static_cast<std::size_t>(i)] = mode.gain;
-    }
-    body.Set(body_params.mode_count, f.data(), d.data(), m.data(), g.data(), fs);
-    const double zero = 0.0, one = 1.0;
-    probe.Set(1, &zero, &zero, &mass, &one, fs);
-  }
-  bench::SdtImpact impact;
-  impact.k = c.k;
-  impact.mu = c.mu_v / v_in;
-  impact.alpha = 1.5;
-  const double exact = synth::HuntCrossleyRestitution(c.mu_v);
-  FrontPoint point;
-  double steps = 0.0;
-  auto run_all = [&](bool measure) {
-    for (int p = 0; p < phases; ++p) {
-      const double phase = (p + 0.5) / phases;
-      body.Reset();
-      probe.Reset();
-      probe.Place(-phase * v_in * t, v_in, t);
-      impact.stored = 0.0;
-      bool started = false;
-      for (long n = 0; n < static_cast<long>(fs); ++n) {
-        const double f = impact.Step(body, probe);
-        if (measure) steps += 1.0;
-        if (f != 0.0) started = true;
-        if (started && probe.Position() - body.Position() <= 0.0 && probe.Velocity() < 0.0) break;
-      }
-      if (measure) {
-        const double e = -probe.Velocity() / v_in;
-        point.error = std::max(point.error, std::fabs(e - exact) / exact);
-      }
-    }
-  };
-  impact.guard_iterations = 0;
-  run_all(true);
-  point.steps = steps / phases;
-  point.guard_share = impact.guard_iterations / std::max(steps, 1.0);
-  point.ns_per_contact = BestSeconds(reps, [&] { run_all(false); }) * 1e9 / phases;
-  return point;
-}
-
-// Measures the default scheme against the explicit reference on the rigid wall and the heavy
-// plate; returns the markdown section and sets *ok when the default costs <= 0.5x the reference
-// at 1e-4 on every k of `must_win`.
-std::string ExplicitFront(const Options& opt) {
-  const int phases = 32;
-  const int reps = opt.quick ? 1 : std::max(opt.reps, 3);
-  const std::vector<double> ks = {1e6, 1e8, 1e10};
-  const std::vector<double> mu_vs = {0.1, 0.5, 1.0};
-  const std::vector<int> ref_os = {1, 2, 3, 4, 6, 8, 12, 16};
-  const std::vector<int> dg_os = {0, 1, 2, 4, 8, 16, 32};  // 0: the automatic choice
-  const synth::ResonatorParams rigid{}, heavy = HeavyPlate();
-  const auto dg = synth::kDefaultContactScheme;
-  struct Entry {
-    double error = 0.0, ns_rigid = 0.0, ns_plate = 0.0, steps = 0.0, guard = 0.0;
-  };
-  // [k][config] -> worst error over μ·v, mean cost over μ·v.
-  std::map<double, std::map<int, Entry>> ref, def;
-  for (double k : ks) {
-    for (double mu_v : mu_vs) {
-      const FrontCase c{k, mu_v};
-      for (int os : ref_os) {
-        const FrontPoint a = ReferenceFront(c, rigid, os, phases, reps);
-        if (opt.quick) std::printf("  ref x%d k=%.0e mu*v=%g: %.2e\n", os, k, mu_v, a.error);
-        const FrontPoint b = ReferenceFront(c, heavy, os, phases, reps);
-        Entry& e = ref[k][os];
-        e.error = std::max({e.error, a.error, b.error});
-        e.ns_rigid += a.ns_per_contact / static_cast<double>(mu_vs.size());
-        e.ns_plate += b.ns_per_contact / static_cast<double>(mu_vs.size());
-        e.steps += a.steps / static_cast<double>(mu_vs.size());
-        e.guard += a.guard_share / static_cast<double>(mu_vs.size());
-      }
-      for (int os : dg_os) {
-        const FrontPoint a = KernelFront(c, rigid, dg, os, phases, reps);
-        if (opt.quick) std::printf("  dg x%d k=%.0e mu*v=%g: %.2e\n", os, k, mu_v, a.error);
-        const FrontPoint b = KernelFront(c, heavy, dg, os, phases, reps);
-        Entry& e = def[k][os];
-        e.error = std::max({e.error, a.error, b.error});
-        e.ns_rigid += a.ns_per_contact / static_cast<double>(mu_vs.size());
-        e.ns_plate += b.ns_per_contact / static_cast<double>(mu_vs.size());
-        e.steps += a.steps / static_cast<double>(mu_vs.size());
-      }
-      std::printf("front: k=%.0e mu*v=%g done\n", k, mu_v);
-      std::fflush(stdout);
-    }
-  }
-  std::ostringstream md;
-  char line[512];
-  md << "\n### Against the explicit reference (how the Sound Design Toolkit solves contact)\n\n"
-        "The explicit reference (tests/bench/explicit_reference.h): impulse-invariant modes and "
-        "a central-difference probe with a one-sample delay from force to position, the "
-        "Hunt–Crossley force explicit in the current state, and the energy-bisection passivity "
-        "guard, run at ×N the sample rate. The default ("
-     << SchemeName(dg)
-     << ") runs its kernel at ×N contact sub-steps (auto: the kiosk's adaptive choice). 10 g at "
-        "1 m/s, α = 1.5, μ·v ∈ {0.1, 0.5, 1}, worst relative restitution error over 32 onset "
-        "phases and the three μ·v; cost per contact (touch to separation, thread CPU time, best of "
-     << reps
-     << "), mean over μ·v, against a rigid wall and against metal.toml's 32-mode steel plate "
-        "made 1e6 times heavier (the modes computed as in the kiosk; the restitution error moves "
-        "by < 1e-6).\n\n";
-  std::map<double, double> ref_order;
-  for (double k : ks) {
-    // Order of the reference: least-squares slope of log error against log N (errors > 1e-8).
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int n = 0;
-    for (auto& [os, e] : ref[k]) {
-      if (!(e.error > 1e-8) || e.error > 0.1) continue;
-      const double x = std::log(static_cast<double>(os)), y = std::log(e.error);
-      sx += x;
-      sy += y;
-      sxx += x * x;
-      sxy += x * y;
-      ++n;
-    }
-    ref_order[k] = n >= 2 ? -(n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.0;
-  }
-  md << "| k | config | error | steps per contact | ns per contact (rigid) | ns per contact (32 "
-        "modes) | guard bisections per step |\n|---|---|---:|---:|---:|---:|---:|\n";
-  for (double k : ks) {
-    for (auto& [os, e] : ref[k]) {
-      std::snprintf(line, sizeof line,
-                    "| %.0e | reference ×%d | %s | %.1f | %.0f | %.0f | %.2f |\n", k, os,
-                    Sci(e.error).c_str(), e.steps, e.ns_rigid, e.ns_plate, e.guard);
-      md << line;
-    }
-    for (auto& [os, e] : def[k]) {
-      const std::string name = os == 0 ? "auto" : "×" + std::to_string(os);
-      std::snprintf(line, sizeof line, "| %.0e | %s %s | %s | %.1f | %.0f | %.0f | |\n", k,
-                    SchemeName(dg).c_str(), name.c_str(), Sci(e.error).c_str(), e.steps, e.ns_rigid,
-                    e.ns_plate);
-      md << line;
-    }
-  }
-  md << "\nAt 1e-4 (the cheapest configuration of each that reaches it; ratio default / "
-        "reference, ≤ 0.5 is the goal):\n\n| k | reference order | reference | default | "
-        "ratio (rigid) | ratio (32 modes) |\n|---|---:|---|---|---:|---:|\n";
-  for (double k : ks) {
-    auto cheapest = [&](const std::map<int, Entry>& rows, bool plate) {
-      int best = -1;
-      double cost = 1e300;
-      for (auto& [os, e] : rows) {
-        const double c = plate ? e.ns_plate : e.ns_rigid;
-        if (e.error <= 1e-4 && c < cost) {
-          cost = c;
-          best = os;
-        }
-      }
-      return std::pair{best, cost};
-    };
-    const auto [r_os, r_cost] = cheapest(ref[k], false);
-    const auto [d_os, d_cost] = cheapest(def[k], false);
-    const auto [rp_os, rp_cost] = cheapest(ref[k], true);
-    const auto [dp_os, dp_cost] = cheapest(def[k], true);
-    auto label = [](int os, double cost) {
-      if (os < 0) return std::string("none within the range");
-      char b[64];
-      std::snprintf(b, sizeof b, "%s, %.0f ns",
-                    os == 0 ? "auto" : ("×" + std::to_string(os)).c_str(), cost);
-      return std::string(b);
-    };
-    const bool both = r_os >= 0 && d_os >= 0, both_plate = rp_os >= 0 && dp_os >= 0;
-    std::snprintf(line, sizeof line,
-                  "| %.0e | %.2f | %s (plate: %s) | %s (plate: %s) | %s | %s |\n", k, ref_order[k],
-                  label(r_os, r_cost).c_str(), label(rp_os, rp_cost).c_str(),
-                  label(d_os, d_cost).c_str(), label(dp_os, dp_cost).c_str(),
-                  both ? (std::to_string(d_cost / r_cost).substr(0, 4)).c_str() : "-",
-                  both_plate ? (std::to_string(dp_cost / rp_cost).substr(0, 4)).c_str() : "-");
-    md << line;
-  }
-  return md.str();
-}
-
-// Friction against the explicit reference: a rub (friction only, wood.toml's elasto-plastic set,
-// noise off, 1 N) on wood.toml's first `modes` modes, the hand at v_mps. Output: the pickup
-// velocity at 48 kHz. The synth's kernel at ×os sub-steps, or the reference at os x 48 kHz.
-struct RubRun {
-  std::vector<double> out;
-  double ns_per_sample = 0.0;
-};
-synth::ResonatorParams FirstModes(const synth::ResonatorParams& all, int count) {
-  synth::ResonatorParams p = all;
-  p.mode_count = std::min(count, all.mode_count);
-  return p;
-}
-RubRun KernelRub(const synth::MaterialParams& wood, int modes_count, double v_mps, int os,
-                 long frames, int reps) {
-  synth::ContactKernelConfig config;
-  config.impact.enabled = false;
-  config.friction.Set(wood.friction);
-  config.friction.sigma3 = 0.0;
-  config.probe_mass_kg = wood.probe.mass_kg;
-  config.SetTiming(kFs, os);
-  synth::ModalState modes;
-  modes.Prepare(FirstModes(wood.resonator, modes_count), kFs, config.substeps, false, false);
-  synth::SampleDrive drive;
-  drive.slide_velocity_mps = v_mps;
-  drive.push_n = 1.0;
-  drive.friction_share = 1.0;
-  RubRun run;
-  run.out.resize(static_cast<std::size_t>(frames));
-  auto render = [&] {
-    modes.Reset();
-    synth::ProbeDynamics probe;
-    probe.active = true;
-    for (long n = 0; n < frames; ++n) {
-      synth::StepContactSample(config, modes, probe, drive);
-      run.out[static_cast<std::size_t>(n)] = modes.PickupVelocity();
-    }
-  };
-  run.ns_per_sample = BestSeconds(reps, render) * 1e9 / static_cast<double>(frames);
-  if (reps <= 0) return run;
-  render();
-  return run;
-}
-RubRun ReferenceRub(const synth::MaterialParams& wood, int modes_count, double v_mps, int os,
-                    long frames, int reps, int* guard_iterations) {
-  const double fs = kFs * os;
-  bench::SdtBody body, probe;
-  const synth::ResonatorParams r = FirstModes(wood.resonator, modes_count);
-  std::array<double, bench::SdtBody::kMax> f{}, d{}, m{}, g{};
-  for (int i = 0; i < r.mode_count; ++i) {
-    const auto& mode = r.modes[static_cast<std::size_t>(i)];
-    f[static_cast<std::size_t>(i)] = mode.frequency_hz;
-    d[static_cast<std::size_t>(i)] = mode.decay_s;
-    m[static_cast<std::size_t>(i)] = mode.mass_kg;
-    g[static_cast<std::size_t>(i)] = mode.gain;
-  }
-  body.Set(r.mode_count, f.data(), d.data(), m.data(), g.data(), fs);
-  const double zero = 0.0, one = 1.0, mass = wood.probe.mass_kg;
-  probe.Set(1, &zero, &zero, &mass, &one, fs);
-  bench::SdtFriction friction;
-  const auto& fp = wood.friction;
-  friction.sigma0 = fp.bristle_stiffness;
-  friction.sigma1 = fp.bristle_damping;
-  friction.sigma2 = fp.viscous_friction;
-  friction.sigma3 = 0.0;
-  friction.mu_s = fp.static_coefficient;
-  friction.mu_d = fp.dynamic_coefficient;
-  friction.v_s = fp.stribeck_velocity_mps;
-  friction.c_ba = fp.breakaway_ratio;
-  friction.fn = 1.0;
-  friction.t = 1.0 / fs;
-  RubRun run;
-  run.out.resize(static_cast<std::size_t>(frames));
-  auto render = [&] {
-    body.Reset();
-    probe.Reset();
-    friction.z = 0.0;
-    friction.guard_iterations = 0;
-    for (long n = 0; n < frames; ++n) {
-      for (int j = 0; j < os; ++j) friction.Step(body, probe, v_mps);
-      run.out[static_cast<std::size_t>(n)] = body.Output();
-    }
-  };
-  run.ns_per_sample = BestSeconds(reps, render) * 1e9 / static_cast<double>(frames);
-  render();
-  *guard_iterations = friction.guard_iterations;
-  return run;
-}
-double RelativeRmsD(const std::vector<double>& y, const std::vector<double>& ref) {
-  double num = 0.0, den = 0.0;
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    num += (y[i] - ref[i]) * (y[i] - ref[i]);
-    den += ref[i] * ref[i];
-  }
-  return den > 0.0 ? std::sqrt(num / den) : 0.0;
-}
-
-std::string FrictionFront(const Options& opt) {
-  const kiosk::Material wood = kiosk::FindMaterial("wood", kiosk::MaterialSearchDirs(""));
-  const long frames = static_cast<long>((opt.quick ? 0.2 : 0.5) * kFs);
-  const int reps = opt.quick ? 1 : std::max(opt.reps, 3);
-  std::ostringstream md;
-  char line[512];
-  md << "\n### Friction against the explicit reference\n\n"
-        "A rub on wood.toml's first 1 and 8 modes (its elasto-plastic set, noise off, 1 N, the "
-        "hand at 0.1 and 2 m/s), "
-     << static_cast<double>(frames) / kFs
-     << " s: the explicit reference's forward-Euler bristle with its energy guard at ×N the "
-        "sample rate, and the synth's kernel (exact exponential bristle relaxation, the "
-        "friction force solved with the modes' exact maps) at ×N sub-steps. Error: relative RMS "
-        "difference of the pickup velocity from the synth's ×64 (and, in brackets, from the "
-        "reference's ×64); cost: ns per output sample (thread CPU time, best of "
-     << reps
-     << ").\n\n| modes | v (m/s) | config | error vs synth ×64 (vs reference ×64) | ns "
-        "per sample | guard bisections per sample |\n|---:|---:|---|---|---:|---:|\n";
-  std::ostringstream summary;
-  summary << "\nAt equal accuracy (each against its own ×64: the two models differ slightly, the "
-             "synth's σ1 term being switched off where the bristle relaxes against the slip, "
-             "so they converge to limits the first column's bracket shows apart): the synth's "
-             "kernel at ×1 and the cheapest reference configuration as accurate.\n\n| modes | "
-             "v (m/s) | synth ×1: error, ns | reference as accurate | ratio synth / reference "
-             "|\n|---:|---:|---|---|---:|\n";
-  for (int count : {1, 8}) {
-    for (double v : {0.1, 2.0}) {
-      const RubRun fine = KernelRub(wood.params, count, v, 64, frames, 0);
-      int it = 0;
-      const RubRun fine_ref = ReferenceRub(wood.params, count, v, 64, frames, 0, &it);
-      const RubRun one = KernelRub(wood.params, count, v, 1, frames, reps);
-      const double target = RelativeRmsD(one.out, fine.out);
-      int match_os = -1;
-      double match_ns = 0.0, match_err = 0.0;
-      for (int os : {1, 2, 4, 8, 16, 32}) {
-        int guard = 0;
-        const RubRun r = ReferenceRub(wood.params, count, v, os, frames, reps, &guard);
-        const double own = RelativeRmsD(r.out, fine_ref.out);
-        if (match_os < 0 && own <= target) {
-          match_os = os;
-          match_ns = r.ns_per_sample;
-          match_err = own;
-        }
-        if (os == 32) {
-          if (match_os < 0) {
-            std::snprintf(line, sizeof line,
-                          "| %d | %g | %s, %.0f | none up to ×32 (×32: %s, %.0f ns) | < %.2f |\n",
-                          count, v, Sci(target).c_str(), one.ns_per_sample, Sci(own).c_str(),
-                          r.ns_per_sample, one.ns_per_sample / r.ns_per_sample);
-          } else {
-            std::snprintf(line, sizeof line, "| %d | %g | %s, %.0f | ×%d: %s, %.0f ns | %.2f |\n",
-                          count, v, Sci(target).c_str(), one.ns_per_sample, match_os,
-                          Sci(match_err).c_str(), match_ns, one.ns_per_sample / match_ns);
-          }
-          summary << line;
-          continue;
-        }
-        std::snprintf(line, sizeof line, "| %d | %g | reference ×%d | %s (%s) | %.0f | %.2f |\n",
-                      count, v, os, Sci(RelativeRmsD(r.out, fine.out)).c_str(),
-                      Sci(RelativeRmsD(r.out, fine_ref.out)).c_str(), r.ns_per_sample,
-                      static_cast<double>(guard) / static_cast<double>(frames));
-        md << line;
-      }
-      for (int os : {1, 2, 4, 8, 16}) {
-        const RubRun r = KernelRub(wood.params, count, v, os, frames, reps);
-        std::snprintf(line, sizeof line, "| %d | %g | %s ×%d | %s (%s) | %.0f | |\n", count, v,
-                      SchemeName(synth::kDefaultContactScheme).c_str(), os,
-                      Sci(RelativeRmsD(r.out, fine.out)).c_str(),
-                      Sci(RelativeRmsD(r.out, fine_ref.out)).c_str(), r.ns_per_sample);
-        md << line;
-      }
-      std::printf("friction front: %d modes, v=%g done\n", count, v);
-      std::fflush(stdout);
-    }
-  }
-  return md.str() + summary.str();
-}
-
 // ---------------------------------------------------------------- stress
 
 int RunStress(long count) {
@@ -1071,20 +566,18 @@ Options ParseArgs(int argc, char** argv) {
   return o;
 }
 
-}  // namespace
+// ---------------------------------------------------------------- the sweeps
 
-int main(int argc, char** argv) {
-  const Options opt = ParseArgs(argc, argv);
-  if (opt.stress > 0) return RunStress(opt.stress);
-  if (opt.front_only) {
-    const std::string front = ExplicitFront(opt) + FrictionFront(opt);
-    std::printf("%s", front.c_str());
-    std::filesystem::create_directories(opt.out_dir);
-    std::ofstream(opt.out_dir + "/explicit_front.md") << front;
-    return 0;
-  }
-  const auto bench_start = Clock::now();
+// What the impact, friction and scene sweeps run over; the reference is chosen after the impact
+// sweep.
+struct Sweep {
+  std::vector<synth::ContactScheme> schemes;
+  std::vector<int> oversamples;
+  int phases = 32;
+  synth::ContactScheme reference = synth::kDefaultContactScheme;
+};
 
+std::vector<synth::ContactScheme> ImplementedSchemes() {
   std::vector<synth::ContactScheme> schemes;
   for (auto s : kAllSchemes) {
     if (synth::IsContactSchemeImplemented(s)) {
@@ -1094,49 +587,52 @@ int main(int argc, char** argv) {
                   SchemeName(s).c_str());
     }
   }
-  const std::vector<int> oversamples =
-      opt.quick ? std::vector<int>{1, 4, 16, 64} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
-  const int phases = opt.quick ? 8 : 32;
-  std::vector<Row> rows;
+  return schemes;
+}
 
-  // Impact.
+// Every scheme × oversampling × impact case; returns the scheme with the smallest impact error at
+// the finest oversampling, the converged reference for friction and scene.
+synth::ContactScheme SweepImpact(const Sweep& sweep, int reps, std::vector<Row>* rows) {
   std::map<synth::ContactScheme, double> log_error_at_64;
-  if (opt.scene_only) schemes.clear();  // skip the sweeps: only the scene cost figures
-  for (auto scheme : schemes) {
-    for (int os : oversamples) {
+  for (auto scheme : sweep.schemes) {
+    for (int os : sweep.oversamples) {
       for (double k : {1e6, 1e8, 1e10, 1e12}) {
         for (double mu_v : {0.1, 1.0}) {
-          rows.push_back(RunImpact(scheme, os, k, mu_v, phases, opt.reps));
-          if (os == oversamples.back())
-            log_error_at_64[scheme] += std::log10(std::max(rows.back().error, 1e-16));
+          rows->push_back(RunImpact(scheme, os, k, mu_v, sweep.phases, reps));
+          if (os == sweep.oversamples.back())
+            log_error_at_64[scheme] += std::log10(std::max(rows->back().error, 1e-16));
         }
       }
     }
     std::printf("impact: %s done\n", SchemeName(scheme).c_str());
     std::fflush(stdout);
   }
-  synth::ContactScheme reference = schemes.empty() ? synth::kDefaultContactScheme : schemes.front();
-  for (auto s : schemes)
+  synth::ContactScheme reference =
+      sweep.schemes.empty() ? synth::kDefaultContactScheme : sweep.schemes.front();
+  for (auto s : sweep.schemes)
     if (log_error_at_64[s] < log_error_at_64[reference]) reference = s;
   std::printf("reference for friction and scene: %s x64 (smallest impact error at x64)\n",
               SchemeName(reference).c_str());
+  return reference;
+}
 
-  // Friction rub: wood.toml's friction, impact off, noise off (the error is the scheme's, not
-  // the noise generator's).
+// Friction rub: wood.toml's friction, impact off, noise off (the error is the scheme's, not
+// the noise generator's).
+void SweepFriction(const Options& opt, const Sweep& sweep, std::vector<Row>* rows) {
   const kiosk::Material wood = kiosk::FindMaterial("wood", kiosk::MaterialSearchDirs(""));
   const long rub_frames = static_cast<long>((opt.quick ? 0.2 : 0.5) * kFs);
+  if (opt.scene_only) return;
   for (double v : {0.1, 2.0}) {
-    if (opt.scene_only) break;
     synth::MaterialParams m = wood.params;
     m.impact.enabled = false;
     m.friction.noise_coefficient = 0.0;
     const auto commands = RubCommands(v);
-    m.impact.scheme = reference;
+    m.impact.scheme = sweep.reference;
     m.impact.oversample = 64;
     const SceneRun ref =
         RenderScene(m, synth::OutputParams{}, synth::HeightFieldView{}, commands, rub_frames, 1);
-    for (auto scheme : schemes) {
-      for (int os : oversamples) {
+    for (auto scheme : sweep.schemes) {
+      for (int os : sweep.oversamples) {
         m.impact.scheme = scheme;
         m.impact.oversample = os;
         const SceneRun run = RenderScene(m, synth::OutputParams{}, synth::HeightFieldView{},
@@ -1150,20 +646,29 @@ int main(int argc, char** argv) {
         row.oversample = os;
         row.ns_per_sample = run.seconds * 1e9 / static_cast<double>(rub_frames);
         row.error = RelativeRms(run.sound, ref.sound);
-        row.reference = scheme == reference && os == 64;
-        rows.push_back(row);
+        row.reference = scheme == sweep.reference && os == 64;
+        rows->push_back(row);
       }
     }
     std::printf("friction v=%g done\n", v);
     std::fflush(stdout);
   }
+}
 
-  // Full kiosk scene.
-  double scene_floor = 0.0, scene_floor_waveform = 0.0;
-  double auto_scene_error = 0.0, auto_scene_waveform = 0.0;
+// The full kiosk scene: metal.toml with the 32-mode plate, the kiosk's gains, the slow stroke
+// upright on the grating.
+struct KioskScene {
+  synth::MaterialParams material;
+  surface::HeightField grating;
+  std::vector<kiosk::TimedCommand> commands;
+  synth::OutputParams output;
+  long frames = 0;
+};
+
+KioskScene MakeKioskScene(bool quick) {
   const kiosk::Material metal = kiosk::FindMaterial("metal", kiosk::MaterialSearchDirs(""));
-  synth::MaterialParams scene_material = metal.params;
-  scene_material.resonator = SteelPlate32();
+  synth::MaterialParams material = metal.params;
+  material.resonator = SteelPlate32();
   const surface::HeightField grating = *kiosk::MakeBuiltinProfile("grating");
   kiosk::GestureMapping mapping;
   mapping.max_penetration_m = surface::ReliefM(grating);
@@ -1172,173 +677,186 @@ int main(int argc, char** argv) {
   // feel nothing and slide flat. Upright (a 0.3 mm point) it rides the ridges.
   kiosk::Gesture stroke = *kiosk::FindBuiltinGesture("slow stroke");
   for (auto& sample : stroke.samples) sample.tilt_deg = 0.0;
-  const auto stroke_commands = kiosk::GestureToCommands(stroke, mapping, kFs);
-  synth::OutputParams kiosk_output;  // the kiosk's default gains (README, Configuration)
-  kiosk_output.sound_gain = std::pow(10.0, 12.0 / 20.0);
-  kiosk_output.haptic_gain = std::pow(10.0, 6.0 / 20.0);
-  const long stroke_frames = static_cast<long>((opt.quick ? 0.6 : stroke.duration_s()) * kFs);
-  // Every scene with a profile must feel it: the share of pen-down samples whose felt profile is
-  // nonzero (penetration threshold applied), from a frame-by-frame pass. 0 ends the benchmark.
-  const double scene_felt =
-      FeltFraction(scene_material, kiosk_output, grating.View(), stroke_commands, stroke_frames);
-  std::printf(
-      "kiosk scene (slow stroke, pen upright, on grating): probe feels the profile in "
-      "%.1f %% of its pen-down samples\n",
-      100.0 * scene_felt);
-  if (!(scene_felt > 0.0)) {
-    std::fprintf(stderr, "the kiosk scene's probe never feels the grating: not measured\n");
-    return 1;
-  }
-  if (!opt.scene_only) {
-    synth::MaterialParams m = scene_material;
-    m.impact.scheme = reference;
-    m.impact.oversample = 64;
-    const SceneRun ref =
-        RenderScene(m, kiosk_output, grating.View(), stroke_commands, stroke_frames, 1);
-    for (auto scheme : schemes) {
-      for (int os : oversamples) {
-        m.impact.scheme = scheme;
-        m.impact.oversample = os;
-        const SceneRun run = RenderScene(m, kiosk_output, grating.View(), stroke_commands,
-                                         stroke_frames, std::max(1, opt.reps - 1));
-        Row row;
-        row.case_name = "scene";
-        row.detail = "32 modes, slow stroke";
-        row.scheme = scheme;
-        row.oversample = os;
-        row.ns_per_sample = run.seconds * 1e9 / static_cast<double>(stroke_frames);
-        row.error = BandEnergyError(run.sound, ref.sound);
-        row.waveform_error = RelativeRms(run.sound, ref.sound);
-        row.reference = scheme == reference && os == 64;
-        rows.push_back(row);
-      }
-    }
-    // The scene as the kiosk runs it (the material's scheme, adaptive oversampling) against the
-    // same reference.
-    {
-      synth::MaterialParams automatic = scene_material;
-      const SceneRun run =
-          RenderScene(automatic, kiosk_output, grating.View(), stroke_commands, stroke_frames, 0);
-      auto_scene_error = BandEnergyError(run.sound, ref.sound);
-      auto_scene_waveform = RelativeRms(run.sound, ref.sound);
-    }
-    // The chaos floor of the scene's error: the reference again with one modal mass changed by
-    // 1e-12 (far below any scheme's error). No scheme can be resolved below it.
-    synth::MaterialParams nudged = m;
-    nudged.impact.scheme = reference;
-    nudged.impact.oversample = 64;
-    nudged.resonator.modes[0].mass_kg *= 1.0 + 1e-12;
-    const SceneRun twin =
-        RenderScene(nudged, kiosk_output, grating.View(), stroke_commands, stroke_frames, 0);
-    scene_floor = BandEnergyError(twin.sound, ref.sound);
-    scene_floor_waveform = RelativeRms(twin.sound, ref.sound);
-    std::printf("scene done (chaos floor: band-energy error %.2g, waveform %.2g)\n", scene_floor,
-                scene_floor_waveform);
-    std::fflush(stdout);
-  }
+  auto commands = kiosk::GestureToCommands(stroke, mapping, kFs);
+  synth::OutputParams output;  // the kiosk's default gains (README, Configuration)
+  output.sound_gain = std::pow(10.0, 12.0 / 20.0);
+  output.haptic_gain = std::pow(10.0, 6.0 / 20.0);
+  const long frames = static_cast<long>((quick ? 0.6 : stroke.duration_s()) * kFs);
+  return KioskScene{material, grating, std::move(commands), output, frames};
+}
 
-  // The kiosk scene's cost as configured (material's scheme, automatic oversampling) and
-  // the idle scene, measured in the same run. A run is short (the 2.1 s stroke takes ~50 ms), so
-  // these take the best of more repetitions: the build machine is shared, and the best run is
-  // the one least disturbed by other work.
-  const int cost_reps = opt.quick ? opt.reps : std::max(opt.reps, 40);
+SceneRun RenderKioskScene(const synth::MaterialParams& material, const synth::OutputParams& output,
+                          const KioskScene& scene, int reps) {
+  return RenderScene(material, output, scene.grating.View(), scene.commands, scene.frames, reps);
+}
+
+// The kiosk scene's figures for the summary, gathered as each is measured.
+struct SceneFigures {
+  double felt = 0.0;  // share of pen-down samples feeling the profile
+  double floor = 0.0, floor_waveform = 0.0;
+  double auto_error = 0.0, auto_waveform = 0.0;
   double active_ns = 0.0, idle_ns = 0.0, no_haptic_ns = 0.0;
   int default_os = 0;
-  {
-    synth::Scene probe_scene;
-    probe_scene.Init(kFs);
-    probe_scene.Prepare(scene_material, kiosk_output, grating.View());
-    default_os = probe_scene.contact_oversample();
-    const SceneRun active = RenderScene(scene_material, kiosk_output, grating.View(),
-                                        stroke_commands, stroke_frames, cost_reps);
-    active_ns = active.seconds * 1e9 / static_cast<double>(stroke_frames);
-    synth::OutputParams no_haptic = kiosk_output;
-    no_haptic.haptic_enabled = false;
-    no_haptic_ns = RenderScene(scene_material, no_haptic, grating.View(), stroke_commands,
-                               stroke_frames, cost_reps)
-                       .seconds *
-                   1e9 / static_cast<double>(stroke_frames);
-    // Idle: after the stroke the pen is lifted; render until the scene skips, then time it.
-    synth::Scene scene;
-    scene.Init(kFs);
-    scene.Prepare(scene_material, kiosk_output, grating.View());
-    std::vector<float> out(2 * 128);
-    synth::ProbeCommand tap;
-    tap.tip_down = true;
-    tap.landing_speed_mps = 0.3;
-    tap.normal_force_n = 1.0;
-    scene.Process(&tap, 1, out.data(), 128);
-    synth::ProbeCommand lift;
-    scene.Process(&lift, 1, out.data(), 128);
-    long blocks = 0;
-    while (!scene.skipping_idle() && blocks < static_cast<long>(120 * kFs / 128)) {
-      scene.Process(nullptr, 0, out.data(), 128);
-      ++blocks;
+  double first_ns = 0.0, last_ns = 0.0, ring_ratio = 0.0;
+};
+
+// The chaos floor of the scene's error: the reference again with one modal mass changed by
+// 1e-12 (far below any scheme's error). No scheme can be resolved below it.
+void MeasureChaosFloor(const KioskScene& scene, synth::ContactScheme reference, const SceneRun& ref,
+                       SceneFigures* figures) {
+  synth::MaterialParams nudged = scene.material;
+  nudged.impact.scheme = reference;
+  nudged.impact.oversample = 64;
+  nudged.resonator.modes[0].mass_kg *= 1.0 + 1e-12;
+  const SceneRun twin = RenderKioskScene(nudged, scene.output, scene, 0);
+  figures->floor = BandEnergyError(twin.sound, ref.sound);
+  figures->floor_waveform = RelativeRms(twin.sound, ref.sound);
+}
+
+// Every scheme × oversampling on the kiosk scene against the reference ×64, then the scene as the
+// kiosk runs it, then the chaos floor.
+void SweepScene(const Options& opt, const Sweep& sweep, const KioskScene& scene,
+                std::vector<Row>* rows, SceneFigures* figures) {
+  synth::MaterialParams m = scene.material;
+  m.impact.scheme = sweep.reference;
+  m.impact.oversample = 64;
+  const SceneRun ref = RenderKioskScene(m, scene.output, scene, 1);
+  for (auto scheme : sweep.schemes) {
+    for (int os : sweep.oversamples) {
+      m.impact.scheme = scheme;
+      m.impact.oversample = os;
+      const SceneRun run = RenderKioskScene(m, scene.output, scene, std::max(1, opt.reps - 1));
+      Row row;
+      row.case_name = "scene";
+      row.detail = "32 modes, slow stroke";
+      row.scheme = scheme;
+      row.oversample = os;
+      row.ns_per_sample = run.seconds * 1e9 / static_cast<double>(scene.frames);
+      row.error = BandEnergyError(run.sound, ref.sound);
+      row.waveform_error = RelativeRms(run.sound, ref.sound);
+      row.reference = scheme == sweep.reference && os == 64;
+      rows->push_back(row);
     }
-    const double idle_after_s = static_cast<double>(blocks) * 128.0 / kFs;
-    const long idle_blocks = static_cast<long>(10 * kFs / 128);
-    const double seconds = BestSeconds(cost_reps, [&] {
-      for (long b = 0; b < idle_blocks; ++b) scene.Process(nullptr, 0, out.data(), 128);
-    });
-    idle_ns = seconds * 1e9 / (static_cast<double>(idle_blocks) * 128.0);
-    std::printf("idle reached %.1f s after the pen was lifted (metal plate, 32 modes)\n",
-                idle_after_s);
   }
-  const double core_fraction = active_ns * kFs * 1e-9;
-  const double idle_ratio = idle_ns / active_ns;
-  const std::string scene_scheme =
-      synth::IsContactSchemeImplemented(scene_material.impact.scheme)
-          ? SchemeName(scene_material.impact.scheme)
-          : SchemeName(scene_material.impact.scheme) + " (not implemented in this build: runs " +
-                SchemeName(synth::ContactScheme::kDiscreteGradient) + ")";
+  // The scene as the kiosk runs it (the material's scheme, adaptive oversampling) against the
+  // same reference.
+  const SceneRun automatic = RenderKioskScene(scene.material, scene.output, scene, 0);
+  figures->auto_error = BandEnergyError(automatic.sound, ref.sound);
+  figures->auto_waveform = RelativeRms(automatic.sound, ref.sound);
+  MeasureChaosFloor(scene, sweep.reference, ref, figures);
+  std::printf("scene done (chaos floor: band-energy error %.2g, waveform %.2g)\n", figures->floor,
+              figures->floor_waveform);
+  std::fflush(stdout);
+}
+
+// ---------------------------------------------------------------- scene cost
+
+// The idle scene: a tap, the pen lifted, rendered until the scene skips; then 10 s of it timed.
+double IdleNsPerSample(const KioskScene& ks, int reps) {
+  synth::Scene scene;
+  scene.Init(kFs);
+  scene.Prepare(ks.material, ks.output, ks.grating.View());
+  std::vector<float> out(2 * 128);
+  synth::ProbeCommand tap;
+  tap.tip_down = true;
+  tap.landing_speed_mps = 0.3;
+  tap.normal_force_n = 1.0;
+  scene.Process(&tap, 1, out.data(), 128);
+  synth::ProbeCommand lift;
+  scene.Process(&lift, 1, out.data(), 128);
+  long blocks = 0;
+  while (!scene.skipping_idle() && blocks < static_cast<long>(120 * kFs / 128)) {
+    scene.Process(nullptr, 0, out.data(), 128);
+    ++blocks;
+  }
+  const double idle_after_s = static_cast<double>(blocks) * 128.0 / kFs;
+  const long idle_blocks = static_cast<long>(10 * kFs / 128);
+  const double seconds = BestSeconds(reps, [&] {
+    for (long b = 0; b < idle_blocks; ++b) scene.Process(nullptr, 0, out.data(), 128);
+  });
+  std::printf("idle reached %.1f s after the pen was lifted (metal plate, 32 modes)\n",
+              idle_after_s);
+  return seconds * 1e9 / (static_cast<double>(idle_blocks) * 128.0);
+}
+
+// The kiosk scene's cost as configured (material's scheme, automatic oversampling) and
+// the idle scene, measured in the same run. A run is short (the 2.1 s stroke takes ~50 ms), so
+// these take the best of more repetitions: the build machine is shared, and the best run is
+// the one least disturbed by other work.
+void MeasureSceneCost(const Options& opt, const KioskScene& scene, SceneFigures* figures) {
+  const int cost_reps = opt.quick ? opt.reps : std::max(opt.reps, 40);
+  synth::Scene probe_scene;
+  probe_scene.Init(kFs);
+  probe_scene.Prepare(scene.material, scene.output, scene.grating.View());
+  figures->default_os = probe_scene.contact_oversample();
+  const SceneRun active = RenderKioskScene(scene.material, scene.output, scene, cost_reps);
+  figures->active_ns = active.seconds * 1e9 / static_cast<double>(scene.frames);
+  synth::OutputParams no_haptic = scene.output;
+  no_haptic.haptic_enabled = false;
+  figures->no_haptic_ns = RenderKioskScene(scene.material, no_haptic, scene, cost_reps).seconds *
+                          1e9 / static_cast<double>(scene.frames);
+  figures->idle_ns = IdleNsPerSample(scene, cost_reps);
+}
+
+std::string SceneSchemeName(const synth::MaterialParams& material) {
+  return synth::IsContactSchemeImplemented(material.impact.scheme)
+             ? SchemeName(material.impact.scheme)
+             : SchemeName(material.impact.scheme) + " (not implemented in this build: runs " +
+                   SchemeName(synth::ContactScheme::kDiscreteGradient) + ")";
+}
+
+void PrintSceneCost(const KioskScene& scene, const SceneFigures& f) {
+  const double core_fraction = f.active_ns * kFs * 1e-9;
+  const double idle_ratio = f.idle_ns / f.active_ns;
   std::printf(
       "full kiosk scene (32 modes, impact + friction + output stage, %s, adaptive "
       "oversampling up to x%d): %.0f ns/sample = %.2f %% of one core at 48 kHz (target <= 2 %%)\n",
-      scene_scheme.c_str(), default_os, active_ns, 100.0 * core_fraction);
-  std::printf("  without the haptic path: %.0f ns/sample\n", no_haptic_ns);
+      SceneSchemeName(scene.material).c_str(), f.default_os, f.active_ns, 100.0 * core_fraction);
+  std::printf("  without the haptic path: %.0f ns/sample\n", f.no_haptic_ns);
   std::printf("idle scene: %.2f ns/sample = %.3f %% of the active scene's cost (target <= 1 %%)\n",
-              idle_ns, 100.0 * idle_ratio);
-  if (opt.scene_only) return 0;
+              f.idle_ns, 100.0 * idle_ratio);
+}
 
-  // Denormals: a 60 s ring-down of the 32-mode plate plus fast-decaying modes.
-  double first_ns = 0.0, last_ns = 0.0;
-  synth::MaterialParams ring = scene_material;
+// Denormals: a 60 s ring-down of the 32-mode plate plus fast-decaying modes.
+void MeasureRingDown(const KioskScene& scene, SceneFigures* f) {
+  synth::MaterialParams ring = scene.material;
   ring.friction.enabled = false;
-  const double ring_ratio = RingDownRatio(ring, &first_ns, &last_ns);
+  f->ring_ratio = RingDownRatio(ring, &f->first_ns, &f->last_ns);
   std::printf(
       "60 s ring-down (idle skip off): %.1f ns/sample in the first second, %.1f in the last: "
       "ratio %.2f (target within 20 %%)\n",
-      first_ns, last_ns, ring_ratio);
+      f->first_ns, f->last_ns, f->ring_ratio);
+}
 
-  // Outputs.
-  std::filesystem::create_directories(opt.out_dir);
-  const std::string csv_path = opt.out_dir + "/contact_bench.csv";
-  const std::string md_path = opt.out_dir + "/contact_bench.md";
-  const std::string png_path = opt.out_dir + "/contact_bench.png";
-  {
-    std::ofstream csv(csv_path);
-    csv << "case,detail,scheme,oversample,ns_per_sample,error,energy_excess,samples_per_contact,"
-           "waveform_error,reference\n";
-    for (const auto& r : rows) {
-      csv << r.case_name << ',' << r.detail << ',' << SchemeName(r.scheme) << ',' << r.oversample
-          << ',' << r.ns_per_sample << ',' << r.error << ',' << r.energy_excess << ','
-          << r.samples_per_contact << ',' << r.waveform_error << ',' << (r.reference ? 1 : 0)
-          << '\n';
-    }
+// ---------------------------------------------------------------- outputs
+
+void WriteCsv(const std::string& path, const std::vector<Row>& rows) {
+  std::ofstream csv(path);
+  csv << "case,detail,scheme,oversample,ns_per_sample,error,energy_excess,samples_per_contact,"
+         "waveform_error,reference\n";
+  for (const auto& r : rows) {
+    csv << r.case_name << ',' << r.detail << ',' << SchemeName(r.scheme) << ',' << r.oversample
+        << ',' << r.ns_per_sample << ',' << r.error << ',' << r.energy_excess << ','
+        << r.samples_per_contact << ',' << r.waveform_error << ',' << (r.reference ? 1 : 0) << '\n';
   }
-  // Aggregate per scheme × oversampling: worst impact error per k (over μ·v), mean impact cost,
-  // worst friction error, scene error and cost.
-  struct Agg {
-    double impact_err[4] = {0, 0, 0, 0};
-    double impact_excess = -1.0;
-    double impact_ns = 0.0;
-    int impact_n = 0;
-    double friction_err = 0.0, friction_ns = 0.0;
-    double scene_err = 0.0, scene_ns = 0.0;
-    bool friction_ref = false, scene_ref = false;
-  };
-  std::map<std::pair<int, int>, Agg> agg;
-  double nc[4] = {0, 0, 0, 0};
+}
+
+// One scheme × oversampling: worst impact error per k (over μ·v), mean impact cost, worst
+// friction error, scene error and cost.
+struct Agg {
+  double impact_err[4] = {0, 0, 0, 0};
+  double impact_excess = -1.0;
+  double impact_ns = 0.0;
+  int impact_n = 0;
+  double friction_err = 0.0, friction_ns = 0.0;
+  double scene_err = 0.0, scene_ns = 0.0;
+  bool friction_ref = false, scene_ref = false;
+};
+using AggTable = std::map<std::pair<int, int>, Agg>;  // [scheme, oversample]
+
+// Folds the rows per scheme × oversampling; *nc gets the samples per contact at ×1 per k.
+AggTable Aggregate(const std::vector<Row>& rows, std::array<double, 4>* nc) {
+  AggTable agg;
   for (const auto& r : rows) {
     Agg& a = agg[{static_cast<int>(r.scheme), r.oversample}];
     if (r.case_name == "impact") {
@@ -1350,7 +868,7 @@ int main(int argc, char** argv) {
       a.impact_excess = std::max(a.impact_excess, r.energy_excess);
       a.impact_ns += r.ns_per_sample;
       ++a.impact_n;
-      if (r.oversample == 1) nc[ki] = r.samples_per_contact;
+      if (r.oversample == 1) (*nc)[static_cast<std::size_t>(ki)] = r.samples_per_contact;
     } else if (r.case_name == "friction") {
       a.friction_err = std::max(a.friction_err, r.error);
       a.friction_ns = std::max(a.friction_ns, r.ns_per_sample);
@@ -1361,32 +879,44 @@ int main(int argc, char** argv) {
       a.scene_ref = r.reference;
     }
   }
+  return agg;
+}
+
+// What was measured and how: the paragraph above the table.
+std::string MethodMarkdown(const Options& opt, const Sweep& sweep, const std::array<double, 4>& nc,
+                           const SceneFigures& f) {
   std::ostringstream md;
   md << "Measured by `contact_bench" << (opt.quick ? " --quick" : "")
      << "` (thread CPU time, best of " << opt.reps
      << " after a warm-up, one core of the build machine, 48 kHz). "
-     << "Impact: worst relative restitution error over " << phases
+     << "Impact: worst relative restitution error over " << sweep.phases
      << " onset phases and μ·v_in ∈ {0.1, 1} against the closed form, m = 10 g, α = 1.5, "
         "v_in = 1 m/s; samples per contact at ×1: ";
-  for (int i = 0; i < 4; ++i) md << (i ? ", " : "") << Sci(nc[i], 2);
+  for (std::size_t i = 0; i < 4; ++i) md << (i ? ", " : "") << Sci(nc[i], 2);
   md << " for k = 1e6, 1e8, 1e10, 1e12. Friction (a rub, worst of 0.1 and 2 m/s): relative RMS "
         "difference of the sound from the "
-     << SchemeName(reference)
+     << SchemeName(sweep.reference)
      << " ×64 reference (the rub is on a flat surface by design: friction only, no profile to "
         "feel). Scene: the slow stroke with the pen upright (a 0.3 mm point; the built-in "
         "gesture's 10° tilt would average the 0.6 mm ridges below the penetration threshold and "
         "slide flat) rides the grating — the probe feels the profile in "
-     << std::lround(100.0 * scene_felt)
+     << std::lround(100.0 * f.felt)
      << " % of its pen-down samples — and sticks and slips, which is "
         "chaotic (a 1e-14 change of one modal mass moves the waveform by O(1) within 0.1 s), so "
         "its error is spectral: RMS over 1/3-octave bands (50 Hz – 20 kHz) of the relative "
         "band-energy difference from the same reference (the waveform difference is in the "
         "CSV). Its chaos floor — the reference against itself with one modal mass changed by "
         "1e-12 — is "
-     << Sci(scene_floor) << " (waveform " << Sci(scene_floor_waveform)
+     << Sci(f.floor) << " (waveform " << Sci(f.floor_waveform)
      << "): scheme differences below it are not resolved by this case. Energy: largest "
         "e_sim/e_exact − 1 over all impacts (e > e_exact·(1 + 1e-6) counts as "
         "energy gained).\n\n";
+  return md.str();
+}
+
+// One row per scheme × oversampling: impact error per k, energy, costs, friction and scene error.
+std::string SchemeTableMarkdown(const AggTable& agg) {
+  std::ostringstream md;
   md << "| scheme | ×os | impact k=1e6 | k=1e8 | k=1e10 | k=1e12 | energy | impact ns/sample | "
         "friction error | friction ns/sample | scene error | scene ns/sample |\n";
   md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -1399,6 +929,12 @@ int main(int argc, char** argv) {
        << " | " << (a.scene_ref ? "ref" : Sci(a.scene_err)) << " | " << std::lround(a.scene_ns)
        << " |\n";
   }
+  return md.str();
+}
+
+std::string SceneSummaryMarkdown(const KioskScene& scene, const SceneFigures& f) {
+  const double core_fraction = f.active_ns * kFs * 1e-9;
+  const double idle_ratio = f.idle_ns / f.active_ns;
   char summary[1024];
   std::snprintf(summary, sizeof summary,
                 "\nFull kiosk scene (32-mode steel plate, impact + friction + output stage, "
@@ -1410,73 +946,142 @@ int main(int argc, char** argv) {
                 "active cost** (target ≤ 1 %%). 60 s ring-down with the idle skip off: %.1f ns "
                 "per sample in the first second, %.1f in the last (ratio %.2f, target within "
                 "20 %%).\n",
-                scene_scheme.c_str(), default_os, active_ns, 100.0 * core_fraction, no_haptic_ns,
-                auto_scene_error, auto_scene_waveform,
-                auto_scene_error <= scene_floor ? "within" : "above", idle_ns, 100.0 * idle_ratio,
-                first_ns, last_ns, ring_ratio);
-  md << summary;
-  md << ExplicitFront(opt) << FrictionFront(opt);
-  {
-    std::ofstream out(md_path);
-    out << md.str();
-  }
+                SceneSchemeName(scene.material).c_str(), f.default_os, f.active_ns,
+                100.0 * core_fraction, f.no_haptic_ns, f.auto_error, f.auto_waveform,
+                f.auto_error <= f.floor ? "within" : "above", f.idle_ns, 100.0 * idle_ratio,
+                f.first_ns, f.last_ns, f.ring_ratio);
+  return summary;
+}
 
-  // Plot: one panel per case group.
-  auto series_for = [&](auto pick) {
-    std::vector<Series> out;
-    for (auto scheme : schemes) {
-      Series s{scheme, {}, {}};
-      for (int os : oversamples) {
-        const auto it = agg.find({static_cast<int>(scheme), os});
-        if (it == agg.end()) continue;
-        auto [cost, err] = pick(it->second);
-        s.points.push_back({cost, err});
-        s.oversample.push_back(os);
-      }
-      out.push_back(s);
+// One series per scheme: (cost, error) per oversampling, as `pick` reads them from the table.
+template <class Pick>
+std::vector<Series> SeriesFor(const Sweep& sweep, const AggTable& agg, Pick pick) {
+  std::vector<Series> out;
+  for (auto scheme : sweep.schemes) {
+    Series s{scheme, {}, {}};
+    for (int os : sweep.oversamples) {
+      const auto it = agg.find({static_cast<int>(scheme), os});
+      if (it == agg.end()) continue;
+      auto [cost, err] = pick(it->second);
+      s.points.push_back({cost, err});
+      s.oversample.push_back(os);
     }
-    return out;
-  };
+    out.push_back(s);
+  }
+  return out;
+}
+
+// Plot: one panel per case group.
+void WriteSchemePlot(const std::string& png_path, const Sweep& sweep, const AggTable& agg,
+                     double scene_floor) {
   std::vector<Panel> panels;
-  panels.push_back({"impact: worst error over k 1e6-1e12", series_for([](const Agg& a) {
+  panels.push_back({"impact: worst error over k 1e6-1e12", SeriesFor(sweep, agg, [](const Agg& a) {
                       return std::pair{a.impact_ns / std::max(a.impact_n, 1),
                                        *std::max_element(a.impact_err, a.impact_err + 4)};
                     })});
-  panels.push_back({"friction rub, 0.1 and 2 m/s", series_for([](const Agg& a) {
+  panels.push_back({"friction rub, 0.1 and 2 m/s", SeriesFor(sweep, agg, [](const Agg& a) {
                       return std::pair{a.friction_ns, a.friction_ref ? 0.0 : a.friction_err};
                     })});
-  panels.push_back({"full kiosk scene, 32 modes", series_for([](const Agg& a) {
-                      return std::pair{a.scene_ns, a.scene_ref ? 0.0 : a.scene_err};
-                    }),
+  panels.push_back({"full kiosk scene, 32 modes",
+                    SeriesFor(sweep, agg,
+                              [](const Agg& a) {
+                                return std::pair{a.scene_ns, a.scene_ref ? 0.0 : a.scene_err};
+                              }),
                     scene_floor});
-  WritePlot(png_path, panels, schemes, SchemeName(reference));
-  if (opt.docs != "-" && !opt.quick) {
-    std::filesystem::create_directories(opt.docs);
-    std::ofstream(opt.docs + "/contact-bench.md")
-        << "# Contact schemes: run time against error\n\nWritten by `contact_bench` "
-           "(tests/bench/contact_bench.cpp); do not edit. The plot: contact-bench.png.\n\n"
-        << md.str();
-    std::filesystem::copy_file(png_path, opt.docs + "/contact-bench.png",
-                               std::filesystem::copy_options::overwrite_existing);
-    std::printf("wrote %s/contact-bench.md and contact-bench.png\n", opt.docs.c_str());
-  }
+  WritePlot(png_path, panels, sweep.schemes, SchemeName(sweep.reference));
+}
 
-  if (!opt.readme.empty()) {
-    std::ifstream in(opt.readme);
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string readme = text.str();
-    const std::string begin = "<!-- bench:begin -->", end = "<!-- bench:end -->";
-    const auto b = readme.find(begin), e = readme.find(end);
-    if (!in || b == std::string::npos || e == std::string::npos || e < b) {
-      std::fprintf(stderr, "%s: no %s ... %s markers; not updated\n", opt.readme.c_str(),
-                   begin.c_str(), end.c_str());
-    } else {
-      readme.replace(b + begin.size(), e - b - begin.size(), "\n" + md.str() + "\n");
-      std::ofstream(opt.readme) << readme;
-      std::printf("updated %s\n", opt.readme.c_str());
-    }
+void WriteDocs(const std::string& docs, const std::string& md, const std::string& png_path) {
+  std::filesystem::create_directories(docs);
+  std::ofstream(docs + "/contact-bench.md")
+      << "# Contact schemes: run time against error\n\nWritten by `contact_bench` "
+         "(tests/bench/contact_bench.cpp); do not edit. The plot: contact-bench.png.\n\n"
+      << md;
+  std::filesystem::copy_file(png_path, docs + "/contact-bench.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::printf("wrote %s/contact-bench.md and contact-bench.png\n", docs.c_str());
+}
+
+// Puts the markdown between the file's bench markers; leaves the file alone without them.
+void UpdateReadme(const std::string& path, const std::string& md) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string readme = text.str();
+  const std::string begin = "<!-- bench:begin -->", end = "<!-- bench:end -->";
+  const auto b = readme.find(begin), e = readme.find(end);
+  if (!in || b == std::string::npos || e == std::string::npos || e < b) {
+    std::fprintf(stderr, "%s: no %s ... %s markers; not updated\n", path.c_str(), begin.c_str(),
+                 end.c_str());
+  } else {
+    readme.replace(b + begin.size(), e - b - begin.size(), "\n" + md + "\n");
+    std::ofstream(path) << readme;
+    std::printf("updated %s\n", path.c_str());
   }
+}
+
+int RunFrontOnly(const Options& opt) {
+  const std::string front =
+      bench::ExplicitFront(opt.quick, opt.reps) + bench::FrictionFront(opt.quick, opt.reps);
+  std::printf("%s", front.c_str());
+  std::filesystem::create_directories(opt.out_dir);
+  std::ofstream(opt.out_dir + "/explicit_front.md") << front;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = ParseArgs(argc, argv);
+  if (opt.stress > 0) return RunStress(opt.stress);
+  if (opt.front_only) return RunFrontOnly(opt);
+  const auto bench_start = Clock::now();
+
+  Sweep sweep;
+  sweep.schemes = ImplementedSchemes();
+  sweep.oversamples =
+      opt.quick ? std::vector<int>{1, 4, 16, 64} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
+  sweep.phases = opt.quick ? 8 : 32;
+  if (opt.scene_only) sweep.schemes.clear();  // skip the sweeps: only the scene cost figures
+  std::vector<Row> rows;
+  sweep.reference = SweepImpact(sweep, opt.reps, &rows);
+  SweepFriction(opt, sweep, &rows);
+
+  const KioskScene scene = MakeKioskScene(opt.quick);
+  SceneFigures figures;
+  // Every scene with a profile must feel it: the share of pen-down samples whose felt profile is
+  // nonzero (penetration threshold applied), from a frame-by-frame pass. 0 ends the benchmark.
+  figures.felt = FeltFraction(scene.material, scene.output, scene.grating.View(), scene.commands,
+                              scene.frames);
+  std::printf(
+      "kiosk scene (slow stroke, pen upright, on grating): probe feels the profile in "
+      "%.1f %% of its pen-down samples\n",
+      100.0 * figures.felt);
+  if (!(figures.felt > 0.0)) {
+    std::fprintf(stderr, "the kiosk scene's probe never feels the grating: not measured\n");
+    return 1;
+  }
+  if (!opt.scene_only) SweepScene(opt, sweep, scene, &rows, &figures);
+  MeasureSceneCost(opt, scene, &figures);
+  PrintSceneCost(scene, figures);
+  if (opt.scene_only) return 0;
+  MeasureRingDown(scene, &figures);
+
+  std::filesystem::create_directories(opt.out_dir);
+  const std::string csv_path = opt.out_dir + "/contact_bench.csv";
+  const std::string md_path = opt.out_dir + "/contact_bench.md";
+  const std::string png_path = opt.out_dir + "/contact_bench.png";
+  WriteCsv(csv_path, rows);
+  std::array<double, 4> nc = {0, 0, 0, 0};
+  const AggTable agg = Aggregate(rows, &nc);
+  std::ostringstream md;
+  md << MethodMarkdown(opt, sweep, nc, figures) << SchemeTableMarkdown(agg)
+     << SceneSummaryMarkdown(scene, figures);
+  md << bench::ExplicitFront(opt.quick, opt.reps) << bench::FrictionFront(opt.quick, opt.reps);
+  std::ofstream(md_path) << md.str();
+  WriteSchemePlot(png_path, sweep, agg, figures.floor);
+  if (opt.docs != "-" && !opt.quick) WriteDocs(opt.docs, md.str(), png_path);
+  if (!opt.readme.empty()) UpdateReadme(opt.readme, md.str());
   std::printf("%s", md.str().c_str());
   std::printf("wrote %s, %s, %s (%.0f s)\n", csv_path.c_str(), md_path.c_str(), png_path.c_str(),
               Seconds(bench_start, Clock::now()));

@@ -84,99 +84,121 @@ std::string Row(const std::string& phase, const Stats& d, const Stats& g) {
          Fixed(g.p99_ms, 2) + " / " + Fixed(g.max_ms, 2) + " |\n";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string config, state_dir, docs, note;
   double present_s = 3.0, loss_s = 10.0, after_s = 4.0;
   int open_hang_ms = 3000;
+};
+
+// Returns 0 when the options are complete, else the exit status (2, after saying why).
+int ParseArgs(int argc, char** argv, Options* o) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--config") {
-      config = value;
+      o->config = value;
     } else if (key == "--state-dir") {
-      state_dir = value;
+      o->state_dir = value;
     } else if (key == "--docs") {
-      docs = value;
+      o->docs = value;
     } else if (key == "--present-s") {
-      present_s = std::atof(value.c_str());
+      o->present_s = std::atof(value.c_str());
     } else if (key == "--loss-s") {
-      loss_s = std::atof(value.c_str());
+      o->loss_s = std::atof(value.c_str());
     } else if (key == "--after-s") {
-      after_s = std::atof(value.c_str());
+      o->after_s = std::atof(value.c_str());
     } else if (key == "--open-hang-ms") {
-      open_hang_ms = std::atoi(value.c_str());
+      o->open_hang_ms = std::atoi(value.c_str());
     } else if (key == "--note") {
-      note = value;
+      o->note = value;
     } else {
       std::fprintf(stderr, "ui_latency_audio_loss: unknown option %s\n", key.c_str());
       return 2;
     }
   }
-  if (config.empty() || state_dir.empty() || docs.empty()) {
+  if (o->config.empty() || o->state_dir.empty() || o->docs.empty()) {
     std::fprintf(stderr,
                  "usage: ui_latency_audio_loss --config FILE --state-dir DIR --docs FILE "
                  "[--present-s S] [--loss-s S] [--after-s S] [--open-hang-ms MS] [--note TEXT]\n");
     return 2;
   }
+  return 0;
+}
 
+// When the device went away and came back, and how many opens had been tried by then.
+struct LossTimes {
+  std::atomic<std::int64_t> start_ns{0}, end_ns{0};
+  std::atomic<int> attempts_at_loss{0}, attempts_at_return{0};
+};
+
+// Runs the live kiosk with the fake device while a timeline thread removes it and brings it back;
+// returns the kiosk's exit status. Every UI pass lands in *passes.
+int RunKioskThroughLoss(const Options& opt, std::vector<Pass>* passes, LossTimes* loss) {
   sas::platform::ThreadedFakeAudioStreamBackend::Shared device;
-  std::vector<Pass> passes;
-  passes.reserve(1'000'000);  // no allocation inside the loop being measured
+  passes->reserve(1'000'000);  // no allocation inside the loop being measured
   std::atomic<bool> first_pass{false};
   sas::app::KioskBackends backends;
   backends.audio_stream = [&] {
     return std::make_unique<sas::platform::ThreadedFakeAudioStreamBackend>(device);
   };
   backends.on_pass = [&](std::int64_t start_ns, std::int64_t end_ns) {
-    if (passes.size() < passes.capacity()) passes.push_back({start_ns, end_ns});
+    if (passes->size() < passes->capacity()) passes->push_back({start_ns, end_ns});
     first_pass.store(true, std::memory_order_release);
   };
 
   // The timeline, on a thread of its own: device there, removed (every open hangs), back; then
   // SIGTERM, the kiosk's own stop.
-  std::atomic<std::int64_t> loss_start_ns{0}, loss_end_ns{0};
-  std::atomic<int> attempts_at_loss{0}, attempts_at_return{0};
   std::thread timeline([&] {
     using std::chrono::duration;
     while (!first_pass.load(std::memory_order_acquire)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    std::this_thread::sleep_for(duration<double>(present_s));
-    attempts_at_loss = device.open_attempts.load();
-    device.open_delay_ms = open_hang_ms;
+    std::this_thread::sleep_for(duration<double>(opt.present_s));
+    loss->attempts_at_loss = device.open_attempts.load();
+    device.open_delay_ms = opt.open_hang_ms;
     device.present = false;
-    loss_start_ns = sas::platform::MonotonicNowNs();
-    std::this_thread::sleep_for(duration<double>(loss_s));
-    loss_end_ns = sas::platform::MonotonicNowNs();
-    attempts_at_return = device.open_attempts.load();
+    loss->start_ns = sas::platform::MonotonicNowNs();
+    std::this_thread::sleep_for(duration<double>(opt.loss_s));
+    loss->end_ns = sas::platform::MonotonicNowNs();
+    loss->attempts_at_return = device.open_attempts.load();
     device.open_delay_ms = 0;
     device.present = true;
-    std::this_thread::sleep_for(duration<double>(after_s));
+    std::this_thread::sleep_for(duration<double>(opt.after_s));
     kill(getpid(), SIGTERM);
   });
-  const int code =
-      sas::app::RunKiosk({"--config", config, "--state-dir", state_dir}, stdout, stderr, backends);
+  const int code = sas::app::RunKiosk({"--config", opt.config, "--state-dir", opt.state_dir},
+                                      stdout, stderr, backends);
   timeline.join();
-  if (code != 0) {
-    std::fprintf(stderr, "ui_latency_audio_loss: the kiosk exited with %d\n", code);
-    return 1;
-  }
+  return code;
+}
 
+// The pass figures before, during and after the loss; the first half second (start-up) is left
+// out of "before".
+struct Phases {
   Stats before_d, before_g, loss_d, loss_g, after_d, after_g;
+};
+
+Phases SplitByPhase(const std::vector<Pass>& passes, const LossTimes& loss) {
+  Phases p;
   const std::int64_t run_start = passes.empty() ? 0 : passes.front().start_ns;
-  Window(passes, run_start + 500'000'000, loss_start_ns, &before_d, &before_g);
-  Window(passes, loss_start_ns, loss_end_ns, &loss_d, &loss_g);
-  Window(passes, loss_end_ns, INT64_MAX, &after_d, &after_g);
-  int audio_lines = 0;
-  std::string audio_text;
+  Window(passes, run_start + 500'000'000, loss.start_ns, &p.before_d, &p.before_g);
+  Window(passes, loss.start_ns, loss.end_ns, &p.loss_d, &p.loss_g);
+  Window(passes, loss.end_ns, INT64_MAX, &p.after_d, &p.after_g);
+  return p;
+}
+
+// The journal's audio-output lines, indented for the report; *count says how many.
+std::string AudioJournal(int* count) {
+  std::string text;
   for (const auto& line : sas::platform::DefaultLogger().Recent()) {
     if (line.component != "audio_out") continue;
-    ++audio_lines;
-    audio_text += "    " + line.Text() + "\n";
+    ++*count;
+    text += "    " + line.Text() + "\n";
   }
-  const bool holds = loss_g.count > 0 && loss_g.max_ms <= 100.0;
+  return text;
+}
 
+// Kernel, cores, load and time: a latency figure means little without the machine it came from.
+std::string MachineLine(const std::string& note) {
   utsname host{};
   uname(&host);
   double load[3] = {0, 0, 0};
@@ -184,7 +206,14 @@ int main(int argc, char** argv) {
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return "Machine: " + std::string(host.sysname) + " " + host.release + " " + host.machine + ", " +
+         std::to_string(sysconf(_SC_NPROCESSORS_ONLN)) + " cores, load average " +
+         Fixed(load[0], 2) + " at the end; Xvfb (software rendering). " + when +
+         (note.empty() ? "" : "; " + note) + ".\n";
+}
 
+std::string Report(const Options& opt, const Phases& p, bool holds, const LossTimes& loss,
+                   int audio_lines, const std::string& audio_text, const std::string& machine) {
   std::string md;
   md += "# UI latency while the audio device is gone\n\n";
   md +=
@@ -196,16 +225,16 @@ int main(int argc, char** argv) {
       std::string(holds ? "Holds" : "Does NOT hold") +
       "**: the longest gap between two passes "
       "of the UI loop during the " +
-      Fixed(loss_s, 0) + " s loss was " + Fixed(loss_g.max_ms, 2) + " ms (p99 " +
-      Fixed(loss_g.p99_ms, 2) + " ms).\n\n";
+      Fixed(opt.loss_s, 0) + " s loss was " + Fixed(p.loss_g.max_ms, 2) + " ms (p99 " +
+      Fixed(p.loss_g.p99_ms, 2) + " ms).\n\n";
   md +=
       "How: the live kiosk's own code (`sas::app::RunKiosk`, as `sketch-a-scratch --kiosk`) "
       "under Xvfb, xdotool drawing strokes on it throughout (each drag dents the picture and "
       "redraws). Its audio device is a fake with its own real-time callback thread "
       "(`ThreadedFakeAudioStreamBackend`), supervised by the product's "
       "`SupervisedAudioOutput` on its background thread (`BackgroundAudioOutput`). After " +
-      Fixed(present_s, 0) + " s the device is removed for " + Fixed(loss_s, 0) +
-      " s; while it is away every reopen attempt hangs " + std::to_string(open_hang_ms) +
+      Fixed(opt.present_s, 0) + " s the device is removed for " + Fixed(opt.loss_s, 0) +
+      " s; while it is away every reopen attempt hangs " + std::to_string(opt.open_hang_ms) +
       " ms in the \"driver\" before failing (PortAudio's open sat in ALSA for more than 3 s "
       "after a card vanished). The loop reports every pass; a *gap* is the time from one "
       "pass's start to the next one's, which bounds how long a pen, mouse or key event waits "
@@ -214,27 +243,45 @@ int main(int argc, char** argv) {
   md +=
       "| phase | passes | pass duration ms (median / p99 / max) | gap between passes ms "
       "(median / p99 / max) |\n|---|---|---|---|\n";
-  md += Row("device there (before)", before_d, before_g);
-  md += Row("**device removed (" + Fixed(loss_s, 0) + " s)**", loss_d, loss_g);
-  md += Row("device back (after)", after_d, after_g);
+  md += Row("device there (before)", p.before_d, p.before_g);
+  md += Row("**device removed (" + Fixed(opt.loss_s, 0) + " s)**", p.loss_d, p.loss_g);
+  md += Row("device back (after)", p.after_d, p.after_g);
   md += "\nReopen attempts while the device was away: " +
-        std::to_string(attempts_at_return - attempts_at_loss) + " (each hanging " +
-        std::to_string(open_hang_ms) +
+        std::to_string(loss.attempts_at_return - loss.attempts_at_loss) + " (each hanging " +
+        std::to_string(opt.open_hang_ms) +
         " ms on the supervision thread). Journal lines about the audio output over the whole "
         "run: " +
         std::to_string(audio_lines) + " (one per state change):\n\n" + audio_text + "\n";
-  md += "Machine: " + std::string(host.sysname) + " " + host.release + " " + host.machine + ", " +
-        std::to_string(sysconf(_SC_NPROCESSORS_ONLN)) + " cores, load average " +
-        Fixed(load[0], 2) + " at the end; Xvfb (software rendering). " + when +
-        (note.empty() ? "" : "; " + note) + ".\n";
-  std::ofstream out(docs, std::ios::trunc);
+  md += machine;
+  return md;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (const int usage = ParseArgs(argc, argv, &opt); usage != 0) return usage;
+  std::vector<Pass> passes;
+  LossTimes loss;
+  const int code = RunKioskThroughLoss(opt, &passes, &loss);
+  if (code != 0) {
+    std::fprintf(stderr, "ui_latency_audio_loss: the kiosk exited with %d\n", code);
+    return 1;
+  }
+  const Phases p = SplitByPhase(passes, loss);
+  int audio_lines = 0;
+  const std::string audio_text = AudioJournal(&audio_lines);
+  const bool holds = p.loss_g.count > 0 && p.loss_g.max_ms <= 100.0;
+  const std::string md =
+      Report(opt, p, holds, loss, audio_lines, audio_text, MachineLine(opt.note));
+  std::ofstream out(opt.docs, std::ios::trunc);
   out << md;
   if (!out) {
-    std::fprintf(stderr, "ui_latency_audio_loss: cannot write %s\n", docs.c_str());
+    std::fprintf(stderr, "ui_latency_audio_loss: cannot write %s\n", opt.docs.c_str());
     return 1;
   }
   std::printf("during the loss: passes %zu, gap max %.2f ms, p99 %.2f ms; pass max %.2f ms -> %s\n",
-              loss_g.count, loss_g.max_ms, loss_g.p99_ms, loss_d.max_ms,
+              p.loss_g.count, p.loss_g.max_ms, p.loss_g.p99_ms, p.loss_d.max_ms,
               holds ? "holds" : "DOES NOT HOLD");
   return holds ? 0 : 1;
 }

@@ -105,14 +105,34 @@ std::vector<kiosk::TimedCommand> StrokeCommands(const kiosk::VisitorStroke& stro
   return commands;
 }
 
+// Sample counts of the instrumented pass: per stroke, summed per texture, and over all textures
+// for the last row. The pen-down samples split into contact, felt and sub-step mix; the ring-out
+// samples into idle or not.
+struct Counts {
+  long down = 0, contact = 0, felt = 0, tail = 0, idle = 0;
+  std::map<int, long> mix;  // pen-down samples by sub-steps used
+
+  void Add(const Counts& other) {
+    down += other.down;
+    contact += other.contact;
+    felt += other.felt;
+    tail += other.tail;
+    idle += other.idle;
+    for (const auto& [n, c] : other.mix) mix[n] += c;
+  }
+  static double Share(long part, long whole) {
+    return static_cast<double>(part) / static_cast<double>(whole);
+  }
+  static double Percent(long part, long whole) {
+    return 100.0 * static_cast<double>(part) / static_cast<double>(whole);
+  }
+};
+
 struct StrokeResult {
   std::string style;
   double core_percent = 0.0;       // stroke (pen down)
   double tail_core_percent = 0.0;  // ring-out after the lift
-  long pen_down = 0;
-  long contact = 0, felt = 0;
-  long tail = 0, idle = 0;
-  std::map<int, long> substeps;  // pen-down samples by sub-steps used
+  Counts samples;
 };
 
 // Renders the commands in blocks; returns CPU seconds of the blocks before and after the lift.
@@ -156,7 +176,7 @@ StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::Vis
     best_down = std::min(best_down, down);
     best_tail = std::min(best_tail, tail);
   }
-  r.pen_down = pen_down;
+  r.samples.down = pen_down;
   r.core_percent = 100.0 * best_down / (static_cast<double>(pen_down) / kFs);
   r.tail_core_percent = 100.0 * best_tail / kTailS;
   if (!stats) return r;
@@ -174,12 +194,12 @@ StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::Vis
     scene.Process(now.data(), static_cast<int>(now.size()), out.data(), 1);
     const synth::SceneProbeState st = scene.probe_state();
     if (f < pen_down) {
-      if (st.touched) ++r.contact;
-      if (st.felt_profile_m > 0.0) ++r.felt;
-      ++r.substeps[st.active ? st.substeps : 0];
+      if (st.touched) ++r.samples.contact;
+      if (st.felt_profile_m > 0.0) ++r.samples.felt;
+      ++r.samples.mix[st.active ? st.substeps : 0];
     } else {
-      ++r.tail;
-      if (scene.skipping_idle()) ++r.idle;
+      ++r.samples.tail;
+      if (scene.skipping_idle()) ++r.samples.idle;
     }
   }
   return r;
@@ -251,106 +271,99 @@ Options ParseArgs(int argc, char** argv) {
   return o;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const Options opt = ParseArgs(argc, argv);
-  const auto population = kiosk::VisitorPopulation(opt.strokes, opt.seed);
+// The four kiosk textures as the kiosk loads them: picture-derived field, material, output gains.
+std::vector<Texture> LoadKioskTextures(const std::string& folder) {
   const kiosk::KioskConfig config;
   const auto dirs = kiosk::MaterialSearchDirs("");
   std::vector<Texture> textures;
   for (const std::string& key : kiosk::KioskTextureNames()) {
     Texture t;
     t.loaded =
-        surface::LoadTexture((std::filesystem::path(opt.textures) / key / "texture.toml").string());
+        surface::LoadTexture((std::filesystem::path(folder) / key / "texture.toml").string());
     t.name = t.loaded.file.name;
     t.material = kiosk::FindMaterial(t.loaded.file.material, dirs).params;
     t.output = kiosk::KioskOutputParams(config, t.loaded.file.gains);
     t.relief_m = surface::ReliefM(*t.loaded.field);
     textures.push_back(std::move(t));
   }
+  return textures;
+}
 
-  struct Summary {
-    std::string name, material;
-    double median = 0, p95 = 0, worst = 0, tail_median = 0;
-    std::string worst_stroke;
-    double contact = 0, felt = 0, idle = 0;
-    std::string mix;
-    std::map<std::string, std::vector<double>> by_style;
-    int oversample = 1;
-  };
-  std::vector<Summary> summaries;
-  std::vector<double> all_costs;
-  std::map<int, long> all_mix;
-  long all_down = 0, all_contact = 0, all_felt = 0, all_tail = 0, all_idle = 0;
-  bool unfelt = false;
-  for (const Texture& tex : textures) {
-    synth::Scene scene;
-    scene.Init(kFs);
-    scene.Prepare(tex.material, tex.output, tex.loaded.field->View());
-    Summary s;
-    s.name = tex.name;
-    s.material = tex.loaded.file.material;
-    s.oversample = scene.contact_oversample();
-    std::vector<double> costs, tails;
-    std::map<int, long> mix;
-    long down = 0, contact = 0, felt = 0, tail = 0, idle = 0;
-    double worst = -1.0;
-    for (std::size_t i = 0; i < population.size(); ++i) {
-      const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats);
-      costs.push_back(r.core_percent);
-      s.by_style[r.style].push_back(r.core_percent);
-      tails.push_back(r.tail_core_percent);
-      if (r.core_percent > worst) {
-        worst = r.core_percent;
-        const auto& p = population[i].pen;
-        char what[160];
-        std::snprintf(what, sizeof what, "#%zu %s, %.0f mm/s, p %.2f, tilt %.0f°, %.2f s", i,
-                      r.style.c_str(),
-                      std::hypot((p.x1 - p.x0) * kScreenW, (p.y1 - p.y0) * kScreenH) *
-                          surface::DisplayGeometry{}.pixel_pitch_mm() / p.duration_s,
-                      p.pressure, p.tilt_deg, p.duration_s);
-        s.worst_stroke = what;
-      }
-      down += r.pen_down;
-      contact += r.contact;
-      felt += r.felt;
-      tail += r.tail;
-      idle += r.idle;
-      for (const auto& [n, c] : r.substeps) {
-        mix[n] += c;
-        all_mix[n] += c;
-      }
+struct Summary {
+  std::string name, material;
+  double median = 0, p95 = 0, worst = 0, tail_median = 0;
+  std::string worst_stroke;
+  double contact = 0, felt = 0, idle = 0;
+  std::string mix;
+  std::map<std::string, std::vector<double>> by_style;
+  int oversample = 1;
+};
+
+// "#index style, speed, pressure, tilt, duration": enough to replay the worst stroke by hand.
+std::string DescribeStroke(std::size_t index, const std::string& style, const kiosk::PenStroke& p) {
+  char what[160];
+  std::snprintf(what, sizeof what, "#%zu %s, %.0f mm/s, p %.2f, tilt %.0f°, %.2f s", index,
+                style.c_str(),
+                std::hypot((p.x1 - p.x0) * kScreenW, (p.y1 - p.y0) * kScreenH) *
+                    surface::DisplayGeometry{}.pixel_pitch_mm() / p.duration_s,
+                p.pressure, p.tilt_deg, p.duration_s);
+  return what;
+}
+
+// Plays the whole population on one texture; the stroke costs go to *costs, the sample counts to
+// *counts.
+Summary MeasureTexture(const Texture& tex, const std::vector<kiosk::VisitorStroke>& population,
+                       const Options& opt, std::vector<double>* costs, Counts* counts) {
+  synth::Scene scene;
+  scene.Init(kFs);
+  scene.Prepare(tex.material, tex.output, tex.loaded.field->View());
+  Summary s;
+  s.name = tex.name;
+  s.material = tex.loaded.file.material;
+  s.oversample = scene.contact_oversample();
+  std::vector<double> tails;
+  double worst = -1.0;
+  for (std::size_t i = 0; i < population.size(); ++i) {
+    const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats);
+    costs->push_back(r.core_percent);
+    s.by_style[r.style].push_back(r.core_percent);
+    tails.push_back(r.tail_core_percent);
+    if (r.core_percent > worst) {
+      worst = r.core_percent;
+      s.worst_stroke = DescribeStroke(i, r.style, population[i].pen);
     }
-    s.median = sas::kiosk::Percentile(costs, 0.5);
-    s.p95 = sas::kiosk::Percentile(costs, 0.95);
-    s.worst = worst;
-    s.tail_median = sas::kiosk::Percentile(tails, 0.5);
-    s.contact = static_cast<double>(contact) / static_cast<double>(down);
-    s.felt = static_cast<double>(felt) / static_cast<double>(down);
-    s.idle = static_cast<double>(idle) / static_cast<double>(tail);
-    s.mix = SubstepMix(mix, down);
-    all_costs.insert(all_costs.end(), costs.begin(), costs.end());
-    all_down += down;
-    all_contact += contact;
-    all_felt += felt;
-    all_tail += tail;
-    all_idle += idle;
-    if (felt == 0) unfelt = true;
-    std::printf(
-        "%-16s median %.3f %%  p95 %.3f %%  worst %.3f %% (%s)  contact %.1f %%  felt %.1f %%  "
-        "ring-out idle %.1f %%\n",
-        s.name.c_str(), s.median, s.p95, s.worst, s.worst_stroke.c_str(), 100.0 * s.contact,
-        100.0 * s.felt, 100.0 * s.idle);
-    std::printf("  sub-steps (share of pen-down samples; ×0 = probe parked): %s\n", s.mix.c_str());
-    for (const auto& [style, v] : s.by_style) {
-      std::printf("  %-6s median %.3f %%  p95 %.3f %%  worst %.3f %%\n", style.c_str(),
-                  sas::kiosk::Percentile(v, 0.5), sas::kiosk::Percentile(v, 0.95),
-                  *std::max_element(v.begin(), v.end()));
-    }
-    std::fflush(stdout);
-    summaries.push_back(s);
+    counts->Add(r.samples);
   }
+  s.median = sas::kiosk::Percentile(*costs, 0.5);
+  s.p95 = sas::kiosk::Percentile(*costs, 0.95);
+  s.worst = worst;
+  s.tail_median = sas::kiosk::Percentile(tails, 0.5);
+  s.contact = counts->Share(counts->contact, counts->down);
+  s.felt = counts->Share(counts->felt, counts->down);
+  s.idle = counts->Share(counts->idle, counts->tail);
+  s.mix = SubstepMix(counts->mix, counts->down);
+  return s;
+}
+
+void PrintSummary(const Summary& s) {
+  std::printf(
+      "%-16s median %.3f %%  p95 %.3f %%  worst %.3f %% (%s)  contact %.1f %%  felt %.1f %%  "
+      "ring-out idle %.1f %%\n",
+      s.name.c_str(), s.median, s.p95, s.worst, s.worst_stroke.c_str(), 100.0 * s.contact,
+      100.0 * s.felt, 100.0 * s.idle);
+  std::printf("  sub-steps (share of pen-down samples; ×0 = probe parked): %s\n", s.mix.c_str());
+  for (const auto& [style, v] : s.by_style) {
+    std::printf("  %-6s median %.3f %%  p95 %.3f %%  worst %.3f %%\n", style.c_str(),
+                sas::kiosk::Percentile(v, 0.5), sas::kiosk::Percentile(v, 0.95),
+                *std::max_element(v.begin(), v.end()));
+  }
+  std::fflush(stdout);
+}
+
+// The report: how the strokes were played and measured, a row per texture, the row over all
+// strokes, and the targets.
+std::string VisitorMarkdown(const Options& opt, const std::vector<Summary>& summaries,
+                            const std::vector<double>& all_costs, const Counts& all) {
   const double p95 = sas::kiosk::Percentile(all_costs, 0.95);
   const double worst = *std::max_element(all_costs.begin(), all_costs.end());
   const double median = sas::kiosk::Percentile(all_costs, 0.5);
@@ -386,22 +399,43 @@ int main(int argc, char** argv) {
         100.0 * s.contact, 100.0 * s.felt, s.mix.c_str(), s.tail_median, 100.0 * s.idle);
     md << line;
   }
-  std::snprintf(
-      line, sizeof line,
-      "| all | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %s | | %.1f %% |\n\n"
-      "Targets: 95th-percentile stroke ≤ 1 %% of one core: **%s** (%.3f %%); worst "
-      "≤ 2 %%: **%s** (%.3f %%).\n",
-      median, p95, worst, 100.0 * static_cast<double>(all_contact) / static_cast<double>(all_down),
-      100.0 * static_cast<double>(all_felt) / static_cast<double>(all_down),
-      SubstepMix(all_mix, all_down).c_str(),
-      100.0 * static_cast<double>(all_idle) / static_cast<double>(all_tail),
-      p95_ok ? "holds" : "does not hold", p95, worst_ok ? "holds" : "does not hold", worst);
+  std::snprintf(line, sizeof line,
+                "| all | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %s | | %.1f %% |\n\n"
+                "Targets: 95th-percentile stroke ≤ 1 %% of one core: **%s** (%.3f %%); worst "
+                "≤ 2 %%: **%s** (%.3f %%).\n",
+                median, p95, worst, all.Percent(all.contact, all.down),
+                all.Percent(all.felt, all.down), SubstepMix(all.mix, all.down).c_str(),
+                all.Percent(all.idle, all.tail), p95_ok ? "holds" : "does not hold", p95,
+                worst_ok ? "holds" : "does not hold", worst);
   md << line;
-  std::printf("%s", md.str().c_str());
+  return md.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = ParseArgs(argc, argv);
+  const auto population = kiosk::VisitorPopulation(opt.strokes, opt.seed);
+  const std::vector<Texture> textures = LoadKioskTextures(opt.textures);
+  std::vector<Summary> summaries;
+  std::vector<double> all_costs;
+  Counts all;
+  bool unfelt = false;
+  for (const Texture& tex : textures) {
+    std::vector<double> costs;
+    Counts counts;
+    summaries.push_back(MeasureTexture(tex, population, opt, &costs, &counts));
+    PrintSummary(summaries.back());
+    all_costs.insert(all_costs.end(), costs.begin(), costs.end());
+    all.Add(counts);
+    if (counts.felt == 0) unfelt = true;
+  }
+  const std::string md = VisitorMarkdown(opt, summaries, all_costs, all);
+  std::printf("%s", md.c_str());
   if (opt.docs != "-") {
     std::filesystem::create_directories(opt.docs);
     const auto path = std::filesystem::path(opt.docs) / "visitor-bench.md";
-    std::ofstream(path) << md.str();
+    std::ofstream(path) << md;
     std::printf("wrote %s\n", path.c_str());
   }
   if (unfelt && opt.stats) {
