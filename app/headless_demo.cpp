@@ -9,9 +9,9 @@
 #include <optional>
 #include <span>
 
+#include "calibration/texture_levels.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
-#include "calibration/texture_levels.h"
 #include "kiosk/virtual_visit.h"
 #include "sas/version.h"
 #include "surface/loudness.h"

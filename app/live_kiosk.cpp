@@ -18,10 +18,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "kiosk/ambient_gain.h"
 #include "files/kiosk_config.h"
+#include "kiosk/ambient_gain.h"
 #include "kiosk/device_configs.h"
-#include "tools/command_line.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
@@ -36,6 +35,7 @@
 #include "platform/pen/pen_source.h"
 #include "platform/watchdog/watchdog.h"
 #include "staff_panel_view.h"
+#include "tools/command_line.h"
 #include "ui/display_probe.h"
 #include "ui/kiosk_window.h"
 #include "visit_view.h"

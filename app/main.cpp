@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "headless_demo.h"
-#include "tools/command_line.h"
-#include "tools/impact_command.h"
-#include "tools/render_command.h"
 #include "live_kiosk.h"
 #include "platform/discovery.h"
 #include "sas/version.h"
+#include "tools/command_line.h"
+#include "tools/impact_command.h"
+#include "tools/render_command.h"
 #include "ui/display_probe.h"
 
 namespace {

@@ -11,9 +11,9 @@
 
 #include "files/atomic_file.h"
 #include "files/counters_file.h"
-#include "levels/output_gains.h"
 #include "files/material_file.h"
 #include "kiosk/pen_mapping.h"
+#include "levels/output_gains.h"
 #include "platform/common/clock.h"
 #include "platform/common/no_dump_buffer.h"
 #include "platform/log/log.h"

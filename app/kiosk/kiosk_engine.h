@@ -33,16 +33,16 @@
 #include <string>
 #include <vector>
 
+#include "files/kiosk_config.h"
+#include "files/material_file.h"
+#include "files/staff_settings.h"
+#include "files/strings.h"
 #include "kiosk/data_dirs.h"
 #include "kiosk/exposure_meter.h"
 #include "kiosk/gesture.h"
-#include "files/kiosk_config.h"
-#include "files/material_file.h"
 #include "kiosk/session.h"
-#include "files/staff_settings.h"
-#include "files/strings.h"
-#include "levels/stroke_gain.h"
 #include "kiosk/spoken_cues.h"
+#include "levels/stroke_gain.h"
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
 #include "platform/device_status.h"

@@ -229,8 +229,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
     player_->control().scene(slot).SetStrokeGains(gain, gain, kStrokeRampS);
   }
   // No tilt: the passive probe strokes with the texture's own probe.
-  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(session_.surface()), {}, mapping_,
-                  command);
+  ApplyPenReading(pen, current_relief_m_, UntiltedProbe(session_.surface()), {}, mapping_, command);
   player_->control().Probe(now_ns, command);
   passive_down_ = true;
   passive_pen_ = pen;

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "files/kiosk_config.h"
-#include "kiosk/session.h"
 #include "files/strings.h"
+#include "kiosk/session.h"
 #include "player/player.h"
 
 namespace sas::kiosk {

@@ -23,8 +23,8 @@ HeightField::HeightField(int width, int height, double pitch_m, std::pmr::vector
     throw std::invalid_argument("HeightField: size does not match width * height");
   }
   if (!(pitch_m > 0.0)) throw std::invalid_argument("HeightField: pitch must be positive");
-  summed_area_.assign((static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1),
-                      0.0);
+  summed_area_.assign(
+      (static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1), 0.0);
   // Headers over our buffers: a destination of the right size and type is written in place, so the
   // table stays in the heights' memory resource (never in OpenCV's allocator).
   const cv::Mat heights(height, width, CV_32F, heights_.data());

@@ -26,7 +26,7 @@ struct Ebur128Deleter {
 };
 
 constexpr double kLoudnessOffsetDb = -0.691;  // BS.1770: 1 kHz sine at 0 dBFS peak reads -3.01
-constexpr std::size_t kPieceMs = 400;          // the momentary window, the ring buffer's length
+constexpr std::size_t kPieceMs = 400;         // the momentary window, the ring buffer's length
 
 double PowerDb(double mean_square) {
   return mean_square > 0.0 ? 10.0 * std::log10(mean_square) : kSilenceDb;
@@ -61,8 +61,8 @@ std::vector<double> KWeightedLoudnessDb(std::span<const float> samples, double s
   for (std::size_t w = 0; w < windows.size(); ++w) {
     const std::size_t to = std::min(windows[w].to, frames);
     if (windows[w].from >= to) continue;
-    const std::size_t ms = std::min<std::size_t>((2000 * (to - windows[w].from) + rate) / (2 * rate),
-                                                 1000 * to / rate);
+    const std::size_t ms = std::min<std::size_t>(
+        (2000 * (to - windows[w].from) + rate) / (2 * rate), 1000 * to / rate);
     length[w] = rate * ms / 1000;
     for (std::size_t done_ms = 0; done_ms < ms; done_ms += kPieceMs) {
       pieces.push_back({w, to - rate * done_ms / 1000,

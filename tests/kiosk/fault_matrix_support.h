@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the fault-matrix test files.
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -7,6 +8,11 @@
 #include "kiosk/kiosk_engine.h"
 
 namespace sas::test {
+
+// A kiosk texture of the source tree (kSasSourceDir: the fault-matrix executable's definition).
+inline std::string TexturePath(const std::string& key) {
+  return (std::filesystem::path(kSasSourceDir) / "textures" / key / "texture.toml").string();
+}
 
 // A whole file as bytes ("" when it cannot be read): what a row expects to find kept.
 inline std::string ReadAll(const std::string& path) {

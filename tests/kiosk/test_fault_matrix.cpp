@@ -123,10 +123,6 @@ std::string FindEntry(const fs::path& dir, const std::string& prefix) {
   return "";
 }
 
-std::string TexturePath(const std::string& key) {
-  return (fs::path(kSasSourceDir) / "textures" / key / "texture.toml").string();
-}
-
 }  // namespace
 
 TEST_CASE(
@@ -151,7 +147,7 @@ TEST_CASE(
     KioskEngineOptions options;
     options.virtual_clock = true;
     options.cues_dir = "/nonexistent";
-    options.texture_paths = {TexturePath("wooden_board")};
+    options.texture_paths = {sas::test::TexturePath("wooden_board")};
     options.counters_path = path;
     {
       KioskEngine engine(options);

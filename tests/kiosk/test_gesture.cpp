@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "tools/builtin_profiles.h"
 #include "kiosk/gesture.h"
 #include "support/temp_dir.h"
+#include "tools/builtin_profiles.h"
 
 using sas::kiosk::BuiltinGestureNames;
 using sas::kiosk::FindBuiltinGesture;

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/staff_panel.h"
 #include "files/staff_settings.h"
+#include "kiosk/staff_panel.h"
 
 using namespace sas;
 using kiosk::StaffButton;

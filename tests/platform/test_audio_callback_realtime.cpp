@@ -16,8 +16,8 @@
 #include <new>
 #include <vector>
 
-#include "platform/audio/portaudio_callbacks.h"
 #include "common/spsc_queue.h"
+#include "platform/audio/portaudio_callbacks.h"
 
 namespace {
 

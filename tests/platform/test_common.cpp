@@ -13,8 +13,8 @@
 #include <thread>
 #include <vector>
 
-#include "platform/common/no_dump_buffer.h"
 #include "common/spsc_queue.h"
+#include "platform/common/no_dump_buffer.h"
 #include "platform/device_status.h"
 #include "platform/log/log.h"
 #include "support/smaps.h"

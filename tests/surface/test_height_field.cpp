@@ -32,7 +32,8 @@ TEST_CASE("box means from the summed-area table equal brute-force sums over rand
 }
 
 TEST_CASE(
-    "the summed-area table of a field of ones holds x * y exactly, with a zero first row and column",
+    "the summed-area table of a field of ones holds x * y exactly, with a zero first row and "
+    "column",
     "[surface]") {
   const int width = 1920, rows = 5;  // a picture's width, a few rows: small integers sum exactly
   const sas::surface::HeightField field(width, rows, 1e-4,

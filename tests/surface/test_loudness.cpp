@@ -29,8 +29,7 @@ std::vector<float> Sine(double frequency_hz, double amplitude, double fs, double
 // pre-filter shelf and the RLB high-pass biquads), from the standard's coefficients.
 double KWeightingGainDb48k(double hz) {
   const std::array<std::array<double, 5>, 2> table = {{
-      {1.53512485958697, -2.69169618940638, 1.19839281085285, -1.69065929318241,
-       0.73248077421585},
+      {1.53512485958697, -2.69169618940638, 1.19839281085285, -1.69065929318241, 0.73248077421585},
       {1.0, -2.0, 1.0, -1.99004745483398, 0.99007225036621},
   }};
   const std::complex<double> z1 = std::polar(1.0, -2.0 * std::numbers::pi * hz / 48000.0);
