@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "surface/bubble_wrap.h"
@@ -115,6 +117,48 @@ cv::Mat Render(const cv::Mat1f& height_mm, const cv::Mat3f& albedo, const Look& 
   }
   return out;
 }
+
+// What texture.toml says of a texture besides its gains, and the probe a visitor's pen is.
+struct TextureText {
+  const char* folder;
+  const char* name;
+  const char* description;
+  const char* material;
+  double height_scale_mm;
+  double relief_mm;
+  double probe_width_mm;
+  double probe_penetration_mm;
+  const char* probe_style;
+};
+
+// A length as the texture files write it: no trailing zeros, but at least one decimal ("4.0").
+std::string Mm(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  std::string s = text;
+  while (s.size() > 1 && s.back() == '0' && s[s.size() - 2] != '.') s.pop_back();
+  return s;
+}
+
+// The texture's files: its height map, its picture and the text of its texture.toml around the
+// [gains] table (extra_tail follows the [probe] table).
+TextureOut Assemble(const TextureText& t, const cv::Mat1f& height_mm, cv::Mat picture,
+                    const std::string& extra_tail = "") {
+  TextureOut out;
+  out.folder = t.folder;
+  out.height_mm = height_mm;
+  out.height_scale_mm = t.height_scale_mm;
+  out.picture = std::move(picture);
+  out.toml = std::string("name = \"") + t.name + "\"\n" + "description = \"" + t.description +
+             "\"\n" + "material = \"" + t.material + "\"\n" +
+             "picture = \"picture.png\"\nheight_map = \"height.png\"\n" +
+             "height_scale_mm = " + Mm(t.height_scale_mm) + "\n" +
+             "relief_mm = " + Mm(t.relief_mm) + "\n";
+  out.toml_tail = "\n[probe]\nwidth_mm = " + Mm(t.probe_width_mm) +
+                  "\npenetration_mm = " + Mm(t.probe_penetration_mm) + "\nstyle = \"" +
+                  t.probe_style + "\"\n" + extra_tail;
+  return out;
+}
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -190,36 +234,29 @@ TextureOut BubbleWrap(const Canvas& c) {
                                static_cast<float>((0.17 * v + milk * 0.95) * dark));
     }
   }
-  Look look;
-  look.ambient = 0.35;
-  look.diffuse = 0.75;
-  look.light = cv::Vec3f(-0.45f, -0.50f, 0.74f);  // a window high to the upper left
-  look.specular = 0.75;
-  look.shininess = 160.0;
-  look.occlusion = 0.25;
-  look.occlusion_sigma_px = 30.0 * c.scale;
-  TextureOut out;
-  out.folder = "bubble_wrap";
-  out.height_mm = h;
-  out.height_scale_mm = 4.0;
-  out.picture = Render(h, albedo, look, rng);
+  const Look look{.light = cv::Vec3f(-0.45f, -0.50f, 0.74f),  // a window high to the upper left
+                  .ambient = 0.35,
+                  .diffuse = 0.75,
+                  .specular = 0.75,
+                  .shininess = 160.0,
+                  .occlusion = 0.25,
+                  .occlusion_sigma_px = 30.0 * c.scale};
   char bubbles[512];
   std::snprintf(bubbles, sizeof bubbles,
                 "\n[bubbles]\npop_force_n = 2.5\nlayout = \"hexagonal\"\npitch_px = %.3f\n"
                 "radius_px = %.3f\norigin_x_px = %.3f\norigin_y_px = %.3f\n",
                 layout.pitch_px, layout.radius_px, layout.origin_x_px, layout.origin_y_px);
-  out.toml =
-      "name = \"bubble wrap\"\n"
-      "description = \"A sheet of bubble wrap whose air bubbles pop when you press one hard "
-      "enough.\"\n"
-      "material = \"bubble_wrap\"\n"
-      "picture = \"picture.png\"\n"
-      "height_map = \"height.png\"\n"
-      "height_scale_mm = 4.0\n"
-      "relief_mm = 0.8\n";
-  out.toml_tail =
-      "\n[probe]\nwidth_mm = 1.0\npenetration_mm = 0.02\nstyle = \"rub\"\n" + std::string(bubbles);
-  return out;
+  return Assemble({.folder = "bubble_wrap",
+                   .name = "bubble wrap",
+                   .description = "A sheet of bubble wrap whose air bubbles pop when you press one "
+                                  "hard enough.",
+                   .material = "bubble_wrap",
+                   .height_scale_mm = 4.0,
+                   .relief_mm = 0.8,
+                   .probe_width_mm = 1.0,
+                   .probe_penetration_mm = 0.02,
+                   .probe_style = "rub"},
+                  h, Render(h, albedo, look, rng), bubbles);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -320,29 +357,23 @@ TextureOut BrokenGlass(const Canvas& c) {
           (0.38 + 0.18 * std::clamp<double>(sparkle(y, x), -1.0, 2.0)) * groove(y, x) / 0.35);
     }
   }
-  Look look;
-  look.ambient = 1.0;
-  look.diffuse = 0.9;
-  look.specular = 0.9;
-  look.shininess = 25.0;
-  look.grain = 0.010;
-  look.vignette = 0.3;
-  TextureOut out;
-  out.folder = "broken_glass";
-  out.height_mm = h;
-  out.height_scale_mm = 2.0;
-  out.picture = Render(h, albedo, look, rng, &glint);
-  out.toml =
-      "name = \"broken glass\"\n"
-      "description = \"A shattered pane of glass, sharp cracks running out from where it was "
-      "struck.\"\n"
-      "material = \"glass\"\n"
-      "picture = \"picture.png\"\n"
-      "height_map = \"height.png\"\n"
-      "height_scale_mm = 2.0\n"
-      "relief_mm = 0.3\n";
-  out.toml_tail = "\n[probe]\nwidth_mm = 0.3\npenetration_mm = 0.01\nstyle = \"scrape\"\n";
-  return out;
+  const Look look{.ambient = 1.0,
+                  .diffuse = 0.9,
+                  .specular = 0.9,
+                  .shininess = 25.0,
+                  .grain = 0.010,
+                  .vignette = 0.3};
+  return Assemble({.folder = "broken_glass",
+                   .name = "broken glass",
+                   .description = "A shattered pane of glass, sharp cracks running out from where "
+                                  "it was struck.",
+                   .material = "glass",
+                   .height_scale_mm = 2.0,
+                   .relief_mm = 0.3,
+                   .probe_width_mm = 0.3,
+                   .probe_penetration_mm = 0.01,
+                   .probe_style = "scrape"},
+                  h, Render(h, albedo, look, rng, &glint));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -410,29 +441,23 @@ TextureOut WoodenBoard(const Canvas& c) {
                                static_cast<float>((0.72 - 0.18 * late) * v * plank));
     }
   }
-  Look look;
-  look.ambient = 0.40;
-  look.diffuse = 0.75;
-  look.specular = 0.12;
-  look.shininess = 20.0;
-  look.occlusion = 0.8;
-  look.occlusion_sigma_px = 8.0 * c.scale;
-  TextureOut out;
-  out.folder = "wooden_board";
-  out.height_mm = h;
-  out.height_scale_mm = 1.0;
-  out.picture = Render(h, albedo, look, rng);
-  out.toml =
-      "name = \"wooden board\"\n"
-      "description = \"A brushed oak board whose hard grain lines stand up from the softer wood "
-      "around a knot.\"\n"
-      "material = \"wood\"\n"
-      "picture = \"picture.png\"\n"
-      "height_map = \"height.png\"\n"
-      "height_scale_mm = 1.0\n"
-      "relief_mm = 0.15\n";
-  out.toml_tail = "\n[probe]\nwidth_mm = 0.6\npenetration_mm = 0.01\nstyle = \"scrape\"\n";
-  return out;
+  const Look look{.ambient = 0.40,
+                  .diffuse = 0.75,
+                  .specular = 0.12,
+                  .shininess = 20.0,
+                  .occlusion = 0.8,
+                  .occlusion_sigma_px = 8.0 * c.scale};
+  return Assemble({.folder = "wooden_board",
+                   .name = "wooden board",
+                   .description = "A brushed oak board whose hard grain lines stand up from the "
+                                  "softer wood around a knot.",
+                   .material = "wood",
+                   .height_scale_mm = 1.0,
+                   .relief_mm = 0.15,
+                   .probe_width_mm = 0.6,
+                   .probe_penetration_mm = 0.01,
+                   .probe_style = "scrape"},
+                  h, Render(h, albedo, look, rng));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -504,28 +529,23 @@ TextureOut CrackedGround(const Canvas& c) {
                                static_cast<float>((0.70 - 0.36 * f) * v));
     }
   }
-  Look look;
-  look.ambient = 0.35;
-  look.diffuse = 0.80;
-  look.specular = 0.04;
-  look.shininess = 8.0;
-  look.occlusion = 0.9;
-  look.occlusion_sigma_px = 10.0 * c.scale;
-  TextureOut out;
-  out.folder = "cracked_ground";
-  out.height_mm = h;
-  out.height_scale_mm = 3.0;
-  out.picture = Render(h, albedo, look, rng);
-  out.toml =
-      "name = \"cracked ground\"\n"
-      "description = \"Dry cracked earth, hard plates of mud split apart by deep cracks.\"\n"
-      "material = \"dry_soil\"\n"
-      "picture = \"picture.png\"\n"
-      "height_map = \"height.png\"\n"
-      "height_scale_mm = 3.0\n"
-      "relief_mm = 1.0\n";
-  out.toml_tail = "\n[probe]\nwidth_mm = 0.8\npenetration_mm = 0.03\nstyle = \"scrape\"\n";
-  return out;
+  const Look look{.ambient = 0.35,
+                  .diffuse = 0.80,
+                  .specular = 0.04,
+                  .shininess = 8.0,
+                  .occlusion = 0.9,
+                  .occlusion_sigma_px = 10.0 * c.scale};
+  return Assemble(
+      {.folder = "cracked_ground",
+       .name = "cracked ground",
+       .description = "Dry cracked earth, hard plates of mud split apart by deep cracks.",
+       .material = "dry_soil",
+       .height_scale_mm = 3.0,
+       .relief_mm = 1.0,
+       .probe_width_mm = 0.8,
+       .probe_penetration_mm = 0.03,
+       .probe_style = "scrape"},
+      h, Render(h, albedo, look, rng));
 }
 
 }  // namespace sas::textures

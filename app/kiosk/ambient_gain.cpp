@@ -7,14 +7,12 @@
 namespace sas::kiosk {
 
 AmbientGainConfig AmbientGainConfigFrom(const KioskConfig& config) {
-  AmbientGainConfig a;
-  a.enabled = config.ambient_adaptive;
-  a.min_db = config.ambient_min_db;
-  a.max_db = config.ambient_max_db;
-  a.per_db = config.ambient_per_db;
-  a.quiet_dbfs = config.ambient_quiet_dbfs;
-  a.rate_db_per_s = config.ambient_rate_db_per_s;
-  return a;
+  return {.enabled = config.ambient_adaptive,
+          .min_db = config.ambient_min_db,
+          .max_db = config.ambient_max_db,
+          .per_db = config.ambient_per_db,
+          .quiet_dbfs = config.ambient_quiet_dbfs,
+          .rate_db_per_s = config.ambient_rate_db_per_s};
 }
 
 AmbientGain::AmbientGain(const AmbientGainConfig& config) : config_(config) {

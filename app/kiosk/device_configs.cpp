@@ -6,30 +6,23 @@
 namespace sas::kiosk {
 
 platform::AudioInputConfig AudioInputConfigFor(const KioskConfig& config) {
-  platform::AudioInputConfig input;
-  input.device = config.input_device;
-  input.sample_rate_hz = config.sample_rate_hz;
-  return input;
+  return {.device = config.input_device, .sample_rate_hz = config.sample_rate_hz};
 }
 
 platform::VoiceRecorderConfig RecorderConfigFor(const KioskConfig& config) {
-  platform::VoiceRecorderConfig recorder;
-  recorder.sample_rate_hz = config.sample_rate_hz;
-  recorder.max_duration_s = config.record_max_duration_s;
-  recorder.clip_level = static_cast<float>(config.record_clip_level);
-  recorder.silence_rms_dbfs = config.record_silence_rms_dbfs;
-  return recorder;
+  return {.sample_rate_hz = config.sample_rate_hz,
+          .max_duration_s = config.record_max_duration_s,
+          .clip_level = static_cast<float>(config.record_clip_level),
+          .silence_rms_dbfs = config.record_silence_rms_dbfs};
 }
 
 platform::AudioOutputConfig AudioOutputConfigFor(const KioskConfig& config) {
-  platform::AudioOutputConfig output;
-  output.device = config.output_device;
-  output.sample_rate_hz = config.sample_rate_hz;
-  output.frames_per_buffer = config.buffer_frames;
-  output.reopen_backoff_initial_s = config.reopen_backoff_initial_s;
-  output.reopen_backoff_max_s = config.reopen_backoff_max_s;
-  output.stall_timeout_s = config.stall_timeout_s;
-  return output;
+  return {.device = config.output_device,
+          .sample_rate_hz = config.sample_rate_hz,
+          .frames_per_buffer = config.buffer_frames,
+          .reopen_backoff_initial_s = config.reopen_backoff_initial_s,
+          .reopen_backoff_max_s = config.reopen_backoff_max_s,
+          .stall_timeout_s = config.stall_timeout_s};
 }
 
 platform::SwitchesConfig SwitchesConfigFor(const KioskConfig& config) {
@@ -50,12 +43,10 @@ platform::SwitchesConfig SwitchesConfigFor(const KioskConfig& config) {
 
 platform::PenConfig PenConfigFor(const KioskConfig& config, int screen_width_px,
                                  int screen_height_px) {
-  platform::PenConfig pen;
-  pen.screen_width_px = screen_width_px;
-  pen.screen_height_px = screen_height_px;
-  pen.seat = config.pen_seat;
-  pen.device_name_contains = config.pen_device;
-  return pen;
+  return {.screen_width_px = screen_width_px,
+          .screen_height_px = screen_height_px,
+          .seat = config.pen_seat,
+          .device_name_contains = config.pen_device};
 }
 
 }  // namespace sas::kiosk
