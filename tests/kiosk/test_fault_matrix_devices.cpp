@@ -308,22 +308,27 @@ struct DeviceRow {
   std::function<bool(Rig&)> after;   // checks once back; true = ok
 };
 
-std::vector<DeviceRow> DeviceRows() {
-  const auto sounds = [](Rig& rig) {
-    const std::size_t mark = rig.device.played.size();
-    rig.Stroke();
-    return rig.RmsSince(mark) > 1e-3;
+// A stroke after the fault still sounds.
+bool Sounds(Rig& rig) {
+  const std::size_t mark = rig.device.played.size();
+  rig.Stroke();
+  return rig.RmsSince(mark) > 1e-3;
+}
+
+// Placing `token` shows `texture` (not the voice), then the token is lifted again.
+std::function<bool(Rig&)> TokenSwitches(int token, int texture) {
+  return [token, texture](Rig& rig) {
+    rig.switches.keyboard->OnKey(static_cast<char>('1' + token), true, rig.now);
+    rig.Pass();
+    const bool shown = !rig.engine->surface().voice && rig.engine->surface().texture == texture;
+    rig.switches.keyboard->OnKey(static_cast<char>('1' + token), true, rig.now);  // lift it
+    rig.Pass();
+    return shown;
   };
-  const auto token_switches = [](int token, int texture) {
-    return [token, texture](Rig& rig) {
-      rig.switches.keyboard->OnKey(static_cast<char>('1' + token), true, rig.now);
-      rig.Pass();
-      const bool shown = !rig.engine->surface().voice && rig.engine->surface().texture == texture;
-      rig.switches.keyboard->OnKey(static_cast<char>('1' + token), true, rig.now);  // lift it
-      rig.Pass();
-      return shown;
-    };
-  };
+}
+
+// The sound output: lost while running, and absent at start.
+std::vector<DeviceRow> AudioRows() {
   return {
       {"audio out lost mid-visit, back",
        {},
@@ -344,7 +349,7 @@ std::vector<DeviceRow> DeviceRows() {
          rig.PassUntil([&] { return rig.output->Running(); });
        },
        "info audio_out: ok: reopened",
-       sounds},
+       Sounds},
       {"audio out absent at start, plugged in later",
        {false, true, Switches::kGpio},
        "audio_out",
@@ -357,7 +362,13 @@ std::vector<DeviceRow> DeviceRows() {
          rig.PassUntil([&] { return rig.output->Running(); });
        },
        "info audio_out: ok:",
-       sounds},
+       Sounds},
+  };
+}
+
+// The pen tablet: unplugged mid-stroke, and absent at start.
+std::vector<DeviceRow> PenRows() {
+  return {
       {"pen tablet unplugged mid-stroke, back",
        {},
        "pen",
@@ -403,6 +414,12 @@ std::vector<DeviceRow> DeviceRows() {
        },
        "info pen: ok:",
        [](Rig& rig) { return !rig.control->PointerActive(); }},
+  };
+}
+
+// The GPIO token lines and chip, and the microphone.
+std::vector<DeviceRow> GpioAndMicrophoneRows() {
+  return {
       {"GPIO token lines lost (POLLHUP), back",
        {},
        "switches",
@@ -413,11 +430,11 @@ std::vector<DeviceRow> DeviceRows() {
          rig.gpio_source.load()->Fail();
          rig.PassUntil([&] { return rig.board.Get("switches").state == DeviceState::kLost; });
        },
-       [token_switches](Rig& rig) {
+       [](Rig& rig) {
          // The switch thread stays alive for the watchdog, and keys 1-4 still switch.
          const std::int64_t beat = rig.switches.hardware->HeartbeatNs();
          std::this_thread::sleep_for(std::chrono::milliseconds(600));
-         return rig.switches.hardware->HeartbeatNs() > beat && token_switches(1, 1)(rig);
+         return rig.switches.hardware->HeartbeatNs() > beat && TokenSwitches(1, 1)(rig);
        },
        [](Rig& rig) {
          rig.chip.high[1] = false;  // a token placed on switch 2 while the lines were away
@@ -443,7 +460,7 @@ std::vector<DeviceRow> DeviceRows() {
        DeviceState::kMissing,
        "warn switches: missing: GPIO chip '/nonexistent/gpiochip-missing' unusable",
        nullptr,
-       token_switches(1, 1),
+       TokenSwitches(1, 1),
        nullptr,
        nullptr,
        nullptr},
@@ -475,6 +492,12 @@ std::vector<DeviceRow> DeviceRows() {
        nullptr,
        nullptr,
        nullptr},
+  };
+}
+
+// The MCP2221A token board: unplugged, and absent at start.
+std::vector<DeviceRow> TokenBoardRows() {
+  return {
       {"MCP2221A token board unplugged, back",
        {true, true, Switches::kMcp2221},
        "switches",
@@ -484,7 +507,7 @@ std::vector<DeviceRow> DeviceRows() {
          rig.token_board.present = false;
          rig.PassUntil([&] { return rig.board.Get("switches").state == DeviceState::kLost; });
        },
-       token_switches(1, 1),
+       TokenSwitches(1, 1),
        [](Rig& rig) {
          rig.token_board.present = true;
          rig.PassUntil([&] { return rig.board.Get("switches").state == DeviceState::kOk; });
@@ -502,7 +525,7 @@ std::vector<DeviceRow> DeviceRows() {
        DeviceState::kMissing,
        "warn switches: missing: ",
        nullptr,
-       token_switches(1, 1),
+       TokenSwitches(1, 1),
        [](Rig& rig) {
          rig.token_board.present = true;
          rig.PassUntil([&] { return rig.board.Get("switches").state == DeviceState::kOk; });
@@ -515,6 +538,14 @@ std::vector<DeviceRow> DeviceRows() {
          return shown;
        }},
   };
+}
+
+std::vector<DeviceRow> DeviceRows() {
+  std::vector<DeviceRow> rows;
+  for (auto part : {AudioRows(), PenRows(), GpioAndMicrophoneRows(), TokenBoardRows()}) {
+    for (auto& row : part) rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 kiosk::UsageCounters OnDisk(const std::string& path) {
