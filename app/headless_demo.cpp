@@ -41,7 +41,10 @@ class Visit {
 
   static kiosk::KioskEngineOptions EngineOptions(const HeadlessOptions& options) {
     kiosk::KioskEngineOptions engine;
-    engine.config.idle_timeout_s = options.quick ? 2.0 : 6.0;  // the visit ends with an idle reset
+    // The visit ends with an idle reset; no pause before it may reach the timeout, and the
+    // longest is the wait for the 4 s "now scratch your voice" banner to go before the voice's
+    // stroke (a 2 s quick timeout wiped the voice there).
+    engine.config.idle_timeout_s = options.quick ? 5.0 : 6.0;
     engine.countdown_s = options.quick ? 1.0 : 3.0;
     engine.screen_width_px = options.width_px;
     engine.screen_height_px = options.height_px;
