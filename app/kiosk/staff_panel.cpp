@@ -38,11 +38,8 @@ std::string LatencyLine(const StaffPanelInputs& in) {
 
 // The dose, for staff (the README's staff guide turns it into dB SPL with a phone meter once).
 std::string DoseLine(const KioskEngine& engine) {
-  const auto leq = [](std::optional<double> db) {
-    return db ? Fixed(*db, 1) + " dBFS" : std::string("-");
-  };
-  return "Speaker Leq: last visit " + leq(engine.exposure().LastVisitDb()) + ", last hour " +
-         leq(engine.exposure().LastHourDb()) + " (speaker ceiling " +
+  return "Speaker Leq: last visit " + LeqText(engine.exposure().LastVisitDb()) + ", last hour " +
+         LeqText(engine.exposure().LastHourDb()) + " (speaker ceiling " +
          Fixed(engine.config().sound_ceiling_db, 1) + " dBTP)";
 }
 
@@ -104,6 +101,12 @@ const char* StaffButtonLabel(StaffButton button, bool low_vibration) {
       break;
   }
   return "";
+}
+
+std::string LeqText(std::optional<double> dbfs) {
+  if (!dbfs) return "-";
+  if (*dbfs < kSilentLeqDbfs) return "silent";
+  return Fixed(*dbfs, 1) + " dBFS";
 }
 
 std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in) {

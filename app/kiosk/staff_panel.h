@@ -8,6 +8,7 @@
 // knows pixels beyond the pen's position it reports.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,11 @@ struct StaffPanelLine {
 
 // The panel's text, top to bottom.
 std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in);
+
+// An equivalent level for the panel: "-20.3 dBFS", "silent" below kSilentLeqDbfs (a visit with no
+// sound measures the meter's floor, which would read as a number nobody can use), "-" with none.
+inline constexpr double kSilentLeqDbfs = -100.0;
+std::string LeqText(std::optional<double> dbfs);
 
 // The buttons' actions. A press repeats only after kRepeatNs, so a pen resting on a button does not
 // step the volume at the pen's report rate.

@@ -109,3 +109,13 @@ TEST_CASE(
   CHECK(rig.HasLine("Config: test.toml"));
   CHECK(rig.HasLine("Volume 0 dB, vibration 0 dB"));
 }
+
+TEST_CASE(
+    "staff panel: the speaker's Leq reads as dBFS, as silent after a visit with no sound, and as a "
+    "dash before any",
+    "[kiosk]") {
+  CHECK(kiosk::LeqText(-20.34) == "-20.3 dBFS");
+  CHECK(kiosk::LeqText(-99.5) == "-99.5 dBFS");
+  CHECK(kiosk::LeqText(-300.0) == "silent");  // the meter's floor: no sample above zero
+  CHECK(kiosk::LeqText(std::nullopt) == "-");
+}
