@@ -13,10 +13,13 @@
 #include "live_kiosk.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <thread>
 
 #include "files/kiosk_config.h"
 #include "kiosk/ambient_gain.h"
@@ -88,26 +91,43 @@ int ParseKioskArgs(const std::vector<std::string>& args, std::FILE* out, std::FI
   return -1;
 }
 
-// Opens the full-screen window; false (logged) when there is none.
-bool OpenWindow(const kiosk::KioskConfig& config, platform::Logger& log, ui::KioskWindow& window) {
-  ui::KioskWindowOptions window_options;
-  window_options.staff_chord = {config.staff_chord, config.staff_chord_hold_s};
-  window = ui::KioskWindow(window_options);
+// Opens the full-screen window once: the error, or empty when it is open.
+std::string TryOpenWindow(const ui::KioskWindowOptions& options, ui::KioskWindow& window) {
+  window = ui::KioskWindow(options);
   try {
-    try {
-      window.Open();
-    } catch (const ui::WindowError& error) {
-      // A key name SDL does not know: staff must still get in, so keep the default chord.
-      if (std::string(error.what()).rfind("staff chord", 0) != 0) throw;
-      log.Error("config", std::string(error.what()) + " (using the default chord ctrl+alt+s)");
-      window = ui::KioskWindow(ui::KioskWindowOptions{});
-      window.Open();
-    }
+    window.Open();
   } catch (const std::exception& error) {
-    log.Error("display", std::string("cannot open the kiosk window: ") + error.what());
-    return false;
+    return error.what();
   }
-  return true;
+  return {};
+}
+
+// Opens the full-screen window; false (logged) when there is none. The display can be slow to
+// come up (a DRM device still held at boot, an X server under load), so it is tried for a few
+// seconds before the kiosk gives up and exits for systemd to restart it.
+bool OpenWindow(const kiosk::KioskConfig& config, platform::Logger& log, ui::KioskWindow& window) {
+  ui::KioskWindowOptions options;
+  options.staff_chord = {config.staff_chord, config.staff_chord_hold_s};
+  constexpr int kTries = 10;
+  constexpr auto kPause = std::chrono::milliseconds(500);
+  std::string error;
+  for (int attempt = 1; attempt <= kTries; ++attempt) {
+    error = TryOpenWindow(options, window);
+    if (error.rfind("staff chord", 0) == 0) {
+      // A key name SDL does not know: staff must still get in, so keep the default chord.
+      log.Error("config", error + " (using the default chord ctrl+alt+s)");
+      options = ui::KioskWindowOptions{};
+      error = TryOpenWindow(options, window);
+    }
+    if (error.empty()) return true;
+    if (attempt == 1) {
+      log.Warn("display", "cannot open the kiosk window: " + error + "; trying again for " +
+                              std::to_string((kTries - 1) * kPause.count() / 1000) + " s");
+    }
+    if (attempt < kTries) std::this_thread::sleep_for(kPause);
+  }
+  log.Error("display", "cannot open the kiosk window: " + error);
+  return false;
 }
 
 // Every device besides the window, each set up from the configuration; a missing one falls back

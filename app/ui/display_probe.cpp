@@ -5,6 +5,13 @@
 
 namespace sas::ui {
 
+bool IsUnrequestedVirtualDriver(const std::string& driver) {
+  // SDL 2.26 falls back to its virtual `offscreen` driver when x11, wayland and KMSDRM all fail.
+  const char* requested = SDL_getenv("SDL_VIDEODRIVER");
+  const bool virtual_driver = driver == "offscreen" || driver == "dummy";
+  return virtual_driver && (requested == nullptr || driver != requested);
+}
+
 DisplayInfo ProbeDisplay() {
   DisplayInfo info;
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
@@ -12,11 +19,8 @@ DisplayInfo ProbeDisplay() {
     return info;
   }
   if (const char* driver = SDL_GetCurrentVideoDriver()) info.driver = driver;
-  // SDL 2.26 falls back to its virtual `offscreen` driver when x11, wayland and KMSDRM all fail.
   // That is no screen a visitor can see: count it only when asked for by name (render tests).
-  const char* requested = SDL_getenv("SDL_VIDEODRIVER");
-  const bool virtual_driver = info.driver == "offscreen" || info.driver == "dummy";
-  if (virtual_driver && (requested == nullptr || info.driver != requested)) {
+  if (IsUnrequestedVirtualDriver(info.driver)) {
     info.problem =
         "no x11, wayland or KMSDRM display (only SDL's virtual '" + info.driver + "' driver)";
     SDL_QuitSubSystem(SDL_INIT_VIDEO);

@@ -19,4 +19,8 @@ struct DisplayInfo {
 // and shuts video down again. Never throws.
 DisplayInfo ProbeDisplay();
 
+// True for SDL's virtual drivers (offscreen, dummy) unless SDL_VIDEODRIVER names that driver: SDL
+// falls back to them when x11, wayland and KMSDRM all fail, and nobody can see such a window.
+bool IsUnrequestedVirtualDriver(const std::string& driver);
+
 }  // namespace sas::ui

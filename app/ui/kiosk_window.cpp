@@ -10,6 +10,8 @@
 #include <map>
 #include <utility>
 
+#include "ui/display_probe.h"
+
 namespace sas::ui {
 namespace {
 
@@ -414,6 +416,16 @@ void KioskWindow::Open() {
     throw WindowError(std::string("SDL video: ") + SDL_GetError());
   }
   m.sdl_video = true;
+  // A display that fails to open (an X server too slow to answer, a DRM device another process
+  // still holds at boot) makes SDL fall back to its invisible offscreen driver: the kiosk would
+  // run for no one while its supervisor sees it healthy. That is an error the caller can retry.
+  const char* driver = SDL_GetCurrentVideoDriver();
+  if (IsUnrequestedVirtualDriver(driver != nullptr ? driver : "")) {
+    m.Close();
+    throw WindowError(std::string("no x11, wayland or KMSDRM display would open (SDL fell back to "
+                                  "its virtual '") +
+                      (driver != nullptr ? driver : "") + "' driver)");
+  }
   SDL_DisplayMode mode{};
   if (SDL_GetDesktopDisplayMode(0, &mode) != 0 || mode.w <= 0 || mode.h <= 0) {
     const std::string why = SDL_GetError();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -396,4 +397,36 @@ TEST_CASE("the cross-fade the window draws matches the software compositor withi
     }
   }
   CHECK(worst <= 1);
+}
+
+TEST_CASE(
+    "with no display the kiosk window refuses SDL's automatic offscreen fallback (nobody would "
+    "see it) and says so",
+    "[render]") {
+  unsetenv("SDL_VIDEODRIVER");
+  const char* x_display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  const std::string saved_display = x_display ? x_display : "";
+  const std::string saved_wayland = wayland ? wayland : "";
+  unsetenv("DISPLAY");
+  unsetenv("WAYLAND_DISPLAY");
+  std::string driver, error;
+  {
+    KioskWindow window;
+    try {
+      window.Open();
+      if (const char* name = SDL_GetCurrentVideoDriver()) driver = name;
+    } catch (const sas::ui::WindowError& e) {
+      error = e.what();
+    }
+  }
+  if (!saved_display.empty()) setenv("DISPLAY", saved_display.c_str(), 1);
+  if (!saved_wayland.empty()) setenv("WAYLAND_DISPLAY", saved_wayland.c_str(), 1);
+  // On a box whose KMSDRM works the window is real; everywhere else it must not open.
+  if (error.empty()) {
+    CHECK(driver == "KMSDRM");
+  } else {
+    INFO(error);
+    CHECK(error.find("virtual 'offscreen' driver") != std::string::npos);
+  }
 }
