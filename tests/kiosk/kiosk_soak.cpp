@@ -16,6 +16,7 @@
 //
 //   kiosk_soak [--simulated-hours H (8)] [--max-wall-seconds S (0 = none)] [--seed N]
 //              [--warmup-hours W (min(1, H/4))] [--rss-limit-kb K (1024; 0 = not checked)]
+//              [--docs DIR (also write the summary and the checks to DIR/soak.md)]
 // Exit 0 when every check held (a run cut short by --max-wall-seconds says so and checks what it
 // ran), 1 otherwise.
 #include <unistd.h>
@@ -26,9 +27,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -64,6 +67,7 @@ struct Options {
   double warmup_hours = -1.0;
   long rss_limit_kb = 1024;  // 0: not checked (sanitizer builds: ASan's quarantine keeps memory)
   unsigned seed = 20261123;
+  std::string docs_dir;  // empty: the report goes to stdout only
 };
 
 class Day {
@@ -307,36 +311,62 @@ class Day {
     if (Pick(2) == 0) Token(-1);  // takes the token away; else it stays for the idle reset
   }
 
+  // Prints a line of the report and keeps it for the docs page.
+  void Say(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    said_.push_back(line);
+  }
+
+  void WriteDocs(bool ok) const {
+    const std::string path = options_.docs_dir + "/soak.md";
+    std::ofstream md(path);
+    md << "# Soak: an accelerated day of visitors\n\n"
+          "Written by `kiosk_soak --docs docs` (tests/kiosk/kiosk_soak.cpp); do not edit. "
+          "Random visitors through the real engine on its virtual clock, every audio block of "
+          "the day rendered (docs/engineering.md, \"Reliability\"). Seed "
+       << options_.seed << ", " << options_.simulated_hours
+       << " simulated hours asked. Result: " << (ok ? "every check held" : "**a check failed**")
+       << ".\n\n";
+    for (const auto& line : said_) md << "- " << line << "\n";
+    if (!md) throw std::runtime_error("cannot write " + path);
+    std::printf("wrote %s\n", path.c_str());
+  }
+
   bool Report() {
     bool ok = true;
     const auto check = [&](bool condition, const std::string& what) {
-      std::printf("%s: %s\n", condition ? "ok" : "FAIL", what.c_str());
+      Say(std::string(condition ? "ok" : "FAIL") + ": " + what);
       ok = ok && condition;
     };
     Sample();
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
     const double simulated_h = now_s() / 3600.0;
-    std::printf(
+    char line[512];
+    std::snprintf(
+        line, sizeof line,
         "soak: simulated %.2f h (asked %.2f h%s) in %.0f s wall (%.1fx real time), %d visitors, %d "
-        "strokes, %d recordings (%d silent), %d bubbles popped, %d idle resets\n",
+        "strokes, %d recordings (%d silent), %d bubbles popped, %d idle resets",
         simulated_h, options_.simulated_hours,
         out_of_time_ ? ", stopped at --max-wall-seconds" : "", wall_s,
         now_s() / std::max(wall_s, 1e-9), visitors_, strokes_,
         good_recordings_ + failed_recordings_, failed_recordings_, pops_, idle_resets_);
+    Say(line);
     const long growth_kb = rss_after_warm_max_kb_ - rss_warm_kb_;
-    std::printf(
+    std::snprintf(
+        line, sizeof line,
         "soak: RSS start %ld kB, end %ld kB, max %ld kB (every minute); idle on the attract "
-        "screen: after warm-up (%.2f h) %ld kB, highest since %ld kB, last %ld kB (%d samples)\n",
+        "screen: after warm-up (%.2f h) %ld kB, highest since %ld kB, last %ld kB (%d samples)",
         rss_start_kb_, rss_end_kb_, rss_max_kb_, warmup_s_ / 3600.0, rss_warm_kb_,
         rss_after_warm_max_kb_, rss_idle_last_kb_, idle_samples_after_warmup_);
+    Say(line);
     check(nan_ == 0, "NaN/Inf samples in the output: " + std::to_string(nan_));
     if (options_.rss_limit_kb > 0) {
       check(rss_warm_kb_ > 0 && idle_samples_after_warmup_ > 0 && growth_kb < options_.rss_limit_kb,
             "idle RSS growth after warm-up " + std::to_string(growth_kb) + " kB (limit " +
                 std::to_string(options_.rss_limit_kb) + " kB)");
     } else {
-      std::printf("not checked: RSS growth (--rss-limit-kb 0)\n");
+      Say("not checked: RSS growth (--rss-limit-kb 0)");
     }
     check(visitors_ > 0 && strokes_ > 0, "visitors came and stroked");
     check(
@@ -365,6 +395,7 @@ class Day {
     const bool loaded = sas::kiosk::LoadCounters((fs::path(state_dir_) / "counters.toml").string(),
                                                  keys, &reloaded, &error);
     check(saved && loaded && reloaded == counters, "counters file after save reads back equal");
+    if (!options_.docs_dir.empty()) WriteDocs(ok);
     return ok;
   }
 
@@ -392,6 +423,7 @@ class Day {
   int good_recordings_ = 0, failed_recordings_ = 0, voice_failures_ = 0;
   std::vector<std::uint64_t> expected_strokes_;
   std::uint64_t expected_voice_strokes_ = 0;
+  std::vector<std::string> said_;
 };
 
 }  // namespace
@@ -411,10 +443,12 @@ int main(int argc, char** argv) {
       options.rss_limit_kb = std::atol(argv[++i]);
     } else if (arg == "--seed" && has_value) {
       options.seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
+    } else if (arg == "--docs" && has_value) {
+      options.docs_dir = argv[++i];
     } else {
       std::fprintf(stderr,
                    "usage: kiosk_soak [--simulated-hours H] [--max-wall-seconds S] "
-                   "[--warmup-hours W] [--rss-limit-kb K] [--seed N]\n");
+                   "[--warmup-hours W] [--rss-limit-kb K] [--seed N] [--docs DIR]\n");
       return 2;
     }
   }
