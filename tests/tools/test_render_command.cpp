@@ -459,8 +459,9 @@ TEST_CASE(
   // With the bristle damping at the SDT set's 0.1 sqrt(σ0) = 10, light strokes on wood sang at
   // the (2,1) mode's 517 Hz, up to 33 dB above the firm stroke (textures/materials/wood.toml);
   // without that, a lighter stroke is quieter or about as loud. The kiosk's other materials are
-  // held to the same; glass is not: its material asks for stick-slip squeak (μ_s twice μ_d, a
-  // low Stribeck velocity), which comes and goes with speed and pressure.
+  // held to the same; glass is not: its material asks for stick-slip squeak (μ_s well above μ_d, a
+  // low Stribeck velocity), which comes and goes with speed and pressure (a pen at pressure 0.05-0.1
+  // still squeaks at 100-250 mm/s, up to 13 dB above a firm one).
   sas::test::TempDir dir;
   const double fs = 48000.0;
   const auto steady_db = [&](const char* material, double speed_mm_s, double pressure,
