@@ -41,7 +41,6 @@ const std::set<std::string>& KnownOpen() {
       "broken glass/speed-centroid/roll/p0.2",
       "broken glass/speed-centroid/roll/p0.8",
       "broken glass/pressure-sound/roll/30mm/s",
-      "broken glass/style-spectra/scrape-roll/300mm/s,p0.8",
       "wooden board/speed-centroid/rub/p0.8",
       "wooden board/speed-centroid/roll/p0.8",
       "wooden board/style-spectra/scrape-rub/30mm/s,p0.2",
