@@ -40,7 +40,7 @@ class SurfaceReader {
   // read, from the tile table (an upper bound of every BoxMean there, up to its rounding).
   double CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi, double half_px) const;
 
-  static constexpr int kTile = 16;  // pixels per side of a tile of the ceiling table
+  static constexpr int kTile = 8;   // pixels per side of a tile of the ceiling table
   HeightFieldView field_{};
   std::vector<float> tile_max_;  // highest value of each tile, row-major
   int tiles_x_ = 0, tiles_y_ = 0;
