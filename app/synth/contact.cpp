@@ -96,6 +96,7 @@ constexpr double kMinQ = 0.5;
 struct NormalEval {
   double f = 0.0;
   double df = 0.0;
+  double f1 = -1.0;  // k x1^α where the evaluation took it (x1 > 0), else -1
 };
 // `mu_over_h` = μ / h, `f0` = f(x0) (0 if x0 <= 0), `a` = μ C / (3h).
 NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double mu_over_h,
@@ -110,11 +111,14 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, dou
     // The secant's own k x1^α when it took one (one power per evaluation, not two).
     const double f1 = x1 > 0.0 ? (s.f1 >= 0.0 ? s.f1 : m.k * m.PowAlpha(x1)) : 0.0;
     q = 1.0 - a * (f1 - f0);
+    if (x1 > 0.0) e.f1 = f1;
     if (q < kMinQ) {
       q = kMinQ;
     } else if (x1 > 0.0) {
       dq = -a * m.alpha * f1 / x1;
     }
+  } else if (s.f1 >= 0.0) {
+    e.f1 = s.f1;
   }
   const double inv_q = 1.0 / q;
   e.f = s.g * p * inv_q;
@@ -176,8 +180,8 @@ double SolveMonotone(const ForceFn& force, double c, double compliance, double d
 // Discrete-gradient normal solve of one step: F(d) = G(x0, x0 + d)·P(d)/Q(d) (NormalForce), root
 // of d - c + C F(d) = 0 for the free compression change c. The coupled contact solve calls it
 // several times per step with nearly equal c, so V(x0) and the start are computed once, and each
-// call starts from the last root moved by the first-order change Δc / R'(d) (one Newton step from the
-// answer).
+// call starts from the last root moved by the first-order change Δc / R'(d) (one Newton step from
+// the answer).
 class DiscreteGradientSolve {
  public:
   DiscreteGradientSolve(const ImpactModel& m, double x0, double compliance, double h)
@@ -208,9 +212,8 @@ class DiscreteGradientSolve {
     }
     const double scale = std::max(std::fabs(x0_), std::fabs(c)) + 1e-300;
     double slope = 1.0;
-    d = SolveMonotone(
-        [&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_); }, c,
-        compliance_, d, scale, force, &slope);
+    d = SolveMonotone([&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_); },
+                      c, compliance_, d, scale, force, &slope);
     // R(d) = d - c + C F(d) = 0: dd/dc = 1 / R', dF/dc = F' / R' = (R' - 1) / (C R').
     if (slope > 0.0) *dforce_dc = (slope - 1.0) / (compliance_ * slope);
     if (std::isfinite(d) && slope > 0.0) {
@@ -498,8 +501,12 @@ double BristleAlpha(double w, double z_ss, double z_ba) {
 
 }  // namespace
 
-BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
-                             const BristleLimits& limits) {
+namespace {
+
+// AdvanceBristleAt's body, inlined into the contact solves (a call, with its 80-byte result
+// returned through memory, sat on the Newton iteration's dependency chain).
+[[gnu::always_inline]] inline BristleStep StepBristle(const FrictionModel& model, double z0,
+                                                      double du, const BristleLimits& limits) {
   BristleStep out;
   if (!limits.contact) return out;  // no normal force: no contact, the bristle is relaxed
   if (du == 0.0) {
@@ -575,6 +582,13 @@ BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
   out.z1 = sign * w;
   out.mean_z = sign * integral / total;
   return out;
+}
+
+}  // namespace
+
+BristleStep AdvanceBristleAt(const FrictionModel& model, double z0, double du,
+                             const BristleLimits& limits) {
+  return StepBristle(model, z0, du, limits);
 }
 
 void BristleLimits::CacheStart(double z0) {
@@ -673,7 +687,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     BristleStep bristle;
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
       last_u = u;
-      bristle = AdvanceBristleAt(friction, in.z0, u, limits);
+      bristle = StepBristle(friction, in.z0, u, limits);
       f = FrictionStepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
       if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
       return u - in.free_du - in.coupling * (ns.force - f);
@@ -690,7 +704,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       const double dforce_dc = ns.dforce_dc;
       auto search = [&](double uu) {
         last_u = uu;
-        bristle = AdvanceBristleAt(friction, in.z0, uu, limits);
+        bristle = StepBristle(friction, in.z0, uu, limits);
         f = FrictionStepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
         const double force =
             in.impact_on ? std::max(force_a + dforce_dc * in.coupling * (f - f_a), 0.0) : 0.0;
@@ -760,16 +774,16 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
   const double a = mu_h * compliance / 3.0;  // NormalForce's covariance correction
   const double c = in.free_dx + in.coupling * in.friction_guess_n;
-  double d = (c - compliance * f0) /
-             (1.0 + compliance * (0.5 * m.alpha * f0_over_x0 + f0 * mu_h +
-                                  f0 * a * m.alpha * f0_over_x0));
+  double d =
+      (c - compliance * f0) /
+      (1.0 + compliance * (0.5 * m.alpha * f0_over_x0 + f0 * mu_h + f0 * a * m.alpha * f0_over_x0));
   double slope_f = 0.0;  // df/du: analytic where the bristle step gives it, else secant or guess
   double u_prev = 0.0, f_prev = 0.0;
   for (int iteration = 0; iteration < 6; ++iteration) {
     if (!(in.x0 + d > 0.0)) return false;  // opening: the general solve handles the clamp
     const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h, f0, a);
     const double u = in.free_du + in.free_dx - d - probe_part * e.f;
-    const BristleStep b = AdvanceBristleAt(friction, in.z0, u, limits);
+    const BristleStep b = StepBristle(friction, in.z0, u, limits);
     const double f = FrictionStepForce(friction, in.z0, b, u, inv_h, in.noise_n);
     const double rho = in.free_dx + in.coupling * f - compliance * e.f - d;
     const double scale = std::fabs(d) + std::fabs(in.free_dx) + compliance * std::fabs(e.f) +
@@ -779,7 +793,9 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       out->friction_n = f;
       out->z1 = b.z1;
       out->aux1 = 0.0;
-      out->contact_energy_j = m.Potential(in.x0 + d);
+      // V(x1) = k x1^α · x1 / (α + 1) from the evaluation's own k x1^α (the same product).
+      out->contact_energy_j =
+          e.f1 >= 0.0 ? e.f1 * (in.x0 + d) * m.inv_alpha_plus_one : m.Potential(in.x0 + d);
       out->slip_slope = 1.0 + in.coupling * slope_f;
       out->dx = in.free_dx - compliance * e.f + in.coupling * f;
       out->du = in.free_du - in.coupling * f + in.coupling * e.f;

@@ -30,12 +30,13 @@
 //   First order; explicit: holding f(x0) over the whole step lags the force by half a step. The
 //   SDT itself applies f(x[n]) through central differences with a one-sample delay (impulse
 //   invariance), which is second order in practice (measured order 2.5 on a rigid wall: the
-//   faithful reference in tests/bench/explicit_reference.h, contact_bench --front). On its own it gains energy (the force lags the compression). F_max is
-//   the passivity guard: a time-domain passivity observer/controller (Hannaford & Ryu, IEEE Trans.
-//   Robotics and Automation 18(1), 2002) keeps the energy E the contact has received through its
-//   ports, E' = E + F Δx, and F is limited so E' ≥ 0: the contact can never give back more than
-//   it took. F Δx(F) = F (c - C F) is a parabola, so F_max is the root of C F² - c F - E = 0 in
-//   closed form (no iteration). What is left in E when the contact opens is dissipated.
+//   faithful reference in tests/bench/explicit_reference.h, contact_bench --front). On its own it
+//   gains energy (the force lags the compression). F_max is the passivity guard: a time-domain
+//   passivity observer/controller (Hannaford & Ryu, IEEE Trans. Robotics and Automation 18(1),
+//   2002) keeps the energy E the contact has received through its ports, E' = E + F Δx, and F is
+//   limited so E' ≥ 0: the contact can never give back more than it took. F Δx(F) = F (c - C F) is
+//   a parabola, so F_max is the root of C F² - c F - E = 0 in closed form (no iteration). What is
+//   left in E when the contact opens is dissipated.
 // kEnergyQuadratised (IEQ/SAV: Ducceschi & Bilbao, "Simulation of the geometrically exact
 //   nonlinear string via energy quadratisation", J. Sound Vib., 2022; Bilbao, Ducceschi & Zama,
 //   "Explicit exactly energy-conserving methods for Hamiltonian systems", J. Comput. Phys., 2023):
@@ -286,6 +287,14 @@ double RigidWallContactTime(double mass_kg, double k, double alpha, double v_in)
 // tap at 0.3 m/s gets the sub-steps of the 1e-4 rule. The kernel re-chooses the count at the start
 // of each compression from the contact's impact speed (contact_kernel.h), among 1, 2, 4, ... up
 // to ChooseContactOversample's count (which covers 3 m/s).
+// A contact already pressed at the start of a sample, with a force acting in the sample before
+// (a pen held on the surface), is not an impact: its closing speed is the vibration of the bodies
+// under the pen (a squealing plate, the probe rocking on it), for which no restitution is defined.
+// It keeps at most kSustainedContactSubsteps sub-steps (a new impact, from an open contact, gets
+// the rule's count and holds it over its compression): enough for the held friction and normal
+// forces to follow the modes that squeal (up to 0.45 fs); with 1 or 2 sub-steps the held forces
+// lag those modes by a large part of a period and a squealing plate comes out quieter.
+inline constexpr int kSustainedContactSubsteps = 4;
 inline constexpr double kRestitutionTolerance = 1e-4;
 inline constexpr double kAbsoluteSpeedFloor = 0.1;  // m/s
 // Sub-steps per sample an impact at v_mps needs (1 .. kMaxOversample).

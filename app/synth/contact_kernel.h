@@ -15,7 +15,8 @@
 // full-sample step of free motion is taken. With adaptive oversampling (the automatic choice) the
 // number of sub-steps is chosen per sample from the contact's impact speed (ChooseSubstepLevel):
 // a hard landing or a bump gets what its restitution accuracy needs, a pen resting or sliding on
-// the surface gets one.
+// the surface gets one, and a pressed pen over a vibrating surface at most
+// kSustainedContactSubsteps.
 
 #include <array>
 #include <cmath>
@@ -39,6 +40,8 @@ struct ContactKernelConfig {
   // speeds up to sqrt(level_speed_sq[L]) (ContactSubstepsForSpeed); the finest level, any speed.
   bool adaptive = false;
   std::array<double, kMaxSubstepLevels> level_speed_sq{};
+  // The finest level a sustained contact may use (kSustainedContactSubsteps sub-steps at most).
+  int sustained_level = kMaxSubstepLevels - 1;
 
   double rate_hz = 48000.0;       // 1 / period_s
   double inv_probe_mass = 100.0;  // 1 / probe_mass_kg
@@ -61,6 +64,12 @@ struct ContactKernelConfig {
               ? std::numeric_limits<double>::infinity()
               : MaxSpeedForSubsteps(params, probe_mass_kg, sample_rate_hz, modes.level_substeps[l]);
       level_speed_sq[l] *= level_speed_sq[l];
+    }
+    sustained_level = 0;
+    for (int level = 0; level < modes.level_count; ++level) {
+      if (modes.level_substeps[static_cast<std::size_t>(level)] <= kSustainedContactSubsteps) {
+        sustained_level = level;
+      }
     }
   }
 };
@@ -108,6 +117,7 @@ template <class Observer = NoObserver>
 inline void StepContactSample(const ContactKernelConfig& config, ModalState& modes,
                               ProbeDynamics& probe, const SampleDrive& drive,
                               Observer&& observe = Observer{}) {
+  const bool touched_before = probe.touched;
   probe.touched = false;
   if (!probe.active) {
     AdvanceModes(modes, modes.full, 0.0);
@@ -171,6 +181,9 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
            speed_sq > config.level_speed_sq[static_cast<std::size_t>(needed)]) {
       ++needed;
     }
+    // A sustained contact (pressed at the start of the sample, a force acting in the last one) is
+    // not an impact: kSustainedContactSubsteps in contact.h.
+    if (touched_before && x_start > 0.0) needed = std::min(needed, config.sustained_level);
     // Hold the level over one compression: re-chosen when the contact starts closing again.
     const bool closing = xdot > 0.0;
     if (closing && !probe.closing) probe.held_level = needed;

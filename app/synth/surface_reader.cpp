@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sas::synth {
 
@@ -18,6 +19,48 @@ void SurfaceReader::Prepare(const HeightFieldView& field) {
   float highest = field_.height_m[0];
   for (std::size_t i = 1; i < n; ++i) highest = std::max(highest, field_.height_m[i]);
   max_height_m_ = static_cast<double>(highest);
+  tiles_x_ = (field_.width + kTile - 1) / kTile;
+  tiles_y_ = (field_.height + kTile - 1) / kTile;
+  tile_max_.assign(static_cast<std::size_t>(tiles_x_) * static_cast<std::size_t>(tiles_y_),
+                   -std::numeric_limits<float>::infinity());
+  for (int y = 0; y < field_.height; ++y) {
+    for (int x = 0; x < field_.width; ++x) {
+      float& tile =
+          tile_max_[static_cast<std::size_t>(y / kTile) * static_cast<std::size_t>(tiles_x_) +
+                    static_cast<std::size_t>(x / kTile)];
+      tile = std::max(
+          tile,
+          field_.height_m[static_cast<std::size_t>(y) * static_cast<std::size_t>(field_.width) +
+                          static_cast<std::size_t>(x)]);
+    }
+  }
+}
+
+double SurfaceReader::CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi,
+                                  double half_px) const {
+  // The pixels a window of half-width half_px centred in the range can touch, with BoxMean's
+  // clamping of the centre and shifting of the window at the edges, and one pixel to spare.
+  const auto pixel_range = [&](double lo_m, double hi_m, int size, int* first, int* last) {
+    const double n = static_cast<double>(size);
+    const double c_lo = std::clamp(lo_m * inv_pitch_, 0.0, n);
+    const double c_hi = std::clamp(hi_m * inv_pitch_, 0.0, n);
+    const double from = std::max(0.0, std::min(c_lo - half_px, n - 2.0 * half_px)) - 1.0;
+    const double to = std::min(n, std::max(c_hi + half_px, 2.0 * half_px)) + 1.0;
+    *first = static_cast<int>(std::clamp(from, 0.0, n - 1.0));
+    *last = static_cast<int>(std::clamp(to, 0.0, n - 1.0));
+  };
+  int x0 = 0, x1 = 0, y0 = 0, y1 = field_.height - 1;
+  pixel_range(x_lo, x_hi, field_.width, &x0, &x1);
+  if (field_.height > 1) pixel_range(y_lo, y_hi, field_.height, &y0, &y1);
+  float highest = -std::numeric_limits<float>::infinity();
+  for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty) {
+    for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
+      highest = std::max(
+          highest, tile_max_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x_) +
+                             static_cast<std::size_t>(tx)]);
+    }
+  }
+  return static_cast<double>(highest);
 }
 
 // Inlined into BoxMean (four calls per sample): as a call it was a tenth of the kiosk scene's time.
@@ -85,7 +128,7 @@ double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetr
   if (style == ProbeStyle::kRoll) {
     // Bottom of a ball of radius r rolling along the stroke: max over |s| <= r of
     // profile(p + s·dir) + sqrt(r² - s²) - r, sampled at the field pitch (at most 129 points).
-    // A point can only matter if its highest possible value (max height + lift) exceeds both the
+    // A point can only matter if its highest possible value (ceiling + lift) exceeds both the
     // threshold and the best found so far; the lift falls with |s|, so the points are taken from
     // the centre outwards and the scan stops at the first that cannot matter. Skipping them leaves
     // the maximum, hence the result, bit-identical (kBoxMeanSlack covers BoxMean's rounding, which
@@ -97,7 +140,16 @@ double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetr
     const double norm = std::hypot(direction_x, direction_y);
     const double dx = norm > 0.0 ? direction_x / norm : 1.0;
     const double dy = norm > 0.0 ? direction_y / norm : 0.0;
-    const double ceiling = max_height_m_ + kBoxMeanSlack;
+    // The ceiling is the highest point under the ball's track (its tiles), not the field's: on a
+    // low or flat part of the field the scan stops after a point or two. (At least 0: BoxMean
+    // reads 0 where it cannot average.)
+    const double half_px = 0.5 * std::max(width_m * inv_pitch_, 1.0);
+    const double local =
+        std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(r) && std::isfinite(half_px)
+            ? CeilingOver(x_m - r * std::fabs(dx), x_m + r * std::fabs(dx), y_m - r * std::fabs(dy),
+                          y_m + r * std::fabs(dy), half_px)
+            : max_height_m_;
+    const double ceiling = std::max(local, 0.0) + kBoxMeanSlack;
     h = -1e300;
     for (int k = 0; k <= half_count; ++k) {
       const double s = k * ds;

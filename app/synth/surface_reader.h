@@ -9,6 +9,8 @@
 // (rolling does not slide), rub = 1, scrape = 0.3 rising to 1 as the width grows to 8 mm — the
 // paper's tilt control blends scratching into rubbing by width.
 
+#include <vector>
+
 #include "synth/height_field_view.h"
 #include "synth/probe_command.h"
 
@@ -16,7 +18,8 @@ namespace sas::synth {
 
 class SurfaceReader {
  public:
-  // Scans the field once for its highest point. Not real-time.
+  // Scans the field once for its highest point and the highest point of each kTile x kTile tile.
+  // Not real-time (allocates the tile table).
   void Prepare(const HeightFieldView& field);
 
   // Mean height (m) over a square window of side width_m centred at (x_m, y_m); positions outside
@@ -33,8 +36,14 @@ class SurfaceReader {
 
  private:
   double Integral(double px, double py) const;  // ∫∫ over [0,px]×[0,py] (pixel units)
+  // Highest field value any box window centred in [x_lo, x_hi] x [y_lo, y_hi] (metres) can
+  // read, from the tile table (an upper bound of every BoxMean there, up to its rounding).
+  double CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi, double half_px) const;
 
+  static constexpr int kTile = 8;   // pixels per side of a tile of the ceiling table
   HeightFieldView field_{};
+  std::vector<float> tile_max_;  // highest value of each tile, row-major
+  int tiles_x_ = 0, tiles_y_ = 0;
   double max_height_m_ = 0.0;
   double inv_pitch_ = 0.0;  // 1 / pitch (the per-sample lookups multiply)
 };

@@ -22,7 +22,8 @@
 // would not measure what visitors do). Targets: p95 <= 1 %, worst <= 2 % of one
 // core. Writes docs/visitor-bench.md (--docs DIR).
 //
-// Usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR] [--quick]
+// Usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR] [--quick] [--texture KEY]
+// (--texture plays one texture only, for profiling; it writes no docs)
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -227,6 +228,7 @@ struct Options {
   bool stats = true;  // --cost-only: no instrumented pass (profiling)
   std::string docs = SAS_DOCS_DIR;
   std::string textures = SAS_TEXTURES_DIR;
+  std::string only;  // --texture: one texture's key (its folder name), for profiling
 };
 
 Options ParseArgs(int argc, char** argv) {
@@ -252,18 +254,21 @@ Options ParseArgs(int argc, char** argv) {
       o.textures = value();
     } else if (a == "--quick") {
       o.quick = true;
+    } else if (a == "--texture") {
+      o.only = value();
     } else if (a == "--cost-only") {
       o.stats = false;
     } else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR|-] "
-          "[--textures DIR] [--quick] [--cost-only]\n");
+          "[--textures DIR] [--quick] [--cost-only] [--texture KEY]\n");
       std::exit(0);
     } else {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
       std::exit(2);
     }
   }
+  if (!o.only.empty()) o.docs = "-";  // one texture is not the benchmark's page
   if (o.quick) {
     o.strokes = std::min(o.strokes, 30);
     o.reps = 1;
@@ -272,11 +277,12 @@ Options ParseArgs(int argc, char** argv) {
 }
 
 // The four kiosk textures as the kiosk loads them: picture-derived field, material, output gains.
-std::vector<Texture> LoadKioskTextures(const std::string& folder) {
+std::vector<Texture> LoadKioskTextures(const std::string& folder, const std::string& only) {
   const kiosk::KioskConfig config;
   const auto dirs = kiosk::MaterialSearchDirs("");
   std::vector<Texture> textures;
   for (const std::string& key : kiosk::KioskTextureNames()) {
+    if (!only.empty() && key != only) continue;
     Texture t;
     t.loaded =
         surface::LoadTexture((std::filesystem::path(folder) / key / "texture.toml").string());
@@ -416,7 +422,11 @@ std::string VisitorMarkdown(const Options& opt, const std::vector<Summary>& summ
 int main(int argc, char** argv) {
   const Options opt = ParseArgs(argc, argv);
   const auto population = kiosk::VisitorPopulation(opt.strokes, opt.seed);
-  const std::vector<Texture> textures = LoadKioskTextures(opt.textures);
+  const std::vector<Texture> textures = LoadKioskTextures(opt.textures, opt.only);
+  if (textures.empty()) {
+    std::fprintf(stderr, "no kiosk texture %s\n", opt.only.c_str());
+    return 2;
+  }
   std::vector<Summary> summaries;
   std::vector<double> all_costs;
   Counts all;

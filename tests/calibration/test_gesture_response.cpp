@@ -35,6 +35,8 @@ const std::set<std::string>& KnownOpen() {
       "broken glass/pressure-sound/scrape/30mm/s",
       "broken glass/speed-centroid/roll/p0.2",
       "broken glass/style-spectra/scrape-roll/300mm/s,p0.8",
+      "broken glass/speed-centroid/roll/p0.8",
+      "broken glass/pressure-sound/roll/30mm/s",
       "wooden board/speed-centroid/rub/p0.8",
       "wooden board/speed-centroid/roll/p0.8",
       "wooden board/style-spectra/scrape-rub/30mm/s,p0.2",

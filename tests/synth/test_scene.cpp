@@ -3,8 +3,8 @@
 // haptic path off) and of the surface reader (width window, penetration, roll envelope).
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -285,6 +285,61 @@ TEST_CASE("the rolling ball's envelope equals the full scan over every point of 
     }
   }
   // Both outcomes are exercised: touching and not touching the felt part.
+  CHECK(felt > compared / 5);
+  CHECK(felt < compared);
+}
+
+TEST_CASE(
+    "the rolling ball's envelope equals the full scan on a field of high and low parts, up to and "
+    "beyond its edges",
+    "[dsp]") {
+  // The scan's ceiling is the highest point of the tiles under the ball's track: on a field whose
+  // low plain, gentle slope and tall, rough block differ, the result must still be the full
+  // scan's, bit for bit, with the ball on each part, across their borders and past the edges
+  // (where BoxMean clamps and shifts its window).
+  const int w = 150, hgt = 110;
+  const double pitch = 1.5e-4;
+  std::vector<float> h(static_cast<std::size_t>(w * hgt));
+  std::uint32_t state = 777u;
+  for (int y = 0; y < hgt; ++y) {
+    for (int x = 0; x < w; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const double noise = static_cast<double>(state >> 8) / 16777216.0;
+      double v = 0.0;  // plain
+      if (x >= 90 && y >= 60)
+        v = 300e-6 + 200e-6 * noise;  // block
+      else if (x >= 40)
+        v = 1e-6 * (x - 40) + 5e-6 * noise;  // slope
+      h[static_cast<std::size_t>(y * w + x)] = static_cast<float>(v);
+    }
+  }
+  test::OwnedField field(w, hgt, pitch, h);
+  SurfaceReader reader;
+  reader.Prepare(field.view);
+  int compared = 0, felt = 0;
+  for (double penetration : {0.0, 20e-6, 120e-6, 400e-6, 700e-6}) {
+    for (double width : {0.0, 0.9e-3, 4e-3}) {
+      for (int k = 0; k < 60; ++k) {
+        const double x = (-8.0 + 2.77 * k) * pitch, y = (-6.0 + 2.03 * k) * pitch;
+        const double angle = 0.9 * k;
+        const double dx = std::cos(angle), dy = std::sin(angle);
+        const double r = std::max(1e-3, 0.5 * width);
+        const int n = static_cast<int>(std::clamp(r / pitch, 1.0, 64.0));
+        const double ds = r / n;
+        double full = -1e300;
+        for (int i = -n; i <= n; ++i) {
+          const double s = i * ds;
+          const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
+          full = std::max(full, reader.BoxMean(x + s * dx, y + s * dy, width) + lift);
+        }
+        const double expected = std::max(full - (reader.max_height_m() - penetration), 0.0);
+        const double got = reader.Felt(x, y, width, penetration, ProbeStyle::kRoll, 1e-3, dx, dy);
+        CHECK(got == expected);
+        ++compared;
+        if (expected > 0.0) ++felt;
+      }
+    }
+  }
   CHECK(felt > compared / 5);
   CHECK(felt < compared);
 }
