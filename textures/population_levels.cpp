@@ -52,6 +52,7 @@ TextureLevels MeasureTexture(const std::vector<std::string>& paths, std::size_t 
   measurement.global_sound_gain_db = defaults.sound_gain_db;
   measurement.global_haptic_gain_db = defaults.haptic_gain_db;
   measurement.stroke_cap_lu = defaults.stroke_cap_lu;
+  measurement.strokes_per_visit = sas::kiosk::kVisitStrokes;
   for (std::size_t o = 0; o < paths.size(); ++o) {
     if (o != t) measurement.other_textures.push_back(paths[o]);
   }
@@ -102,7 +103,10 @@ std::string LevelsMarkdown(const std::vector<TextureLevels>& rows, int count, un
      << " (calibration/texture_levels.h, VisitorPopulation: scrape / rub / roll, 20–400 mm/s "
         "log-uniform, pressure 0.1–0.9, 0.3–1.5 s, random places and directions), played on "
         "each texture through the kiosk engine with the four textures loaded (the per-stroke "
-        "correction on), at the textures' [gains] and the default kiosk gains (+"
+        "correction on), in visits of "
+     << sas::kiosk::kVisitStrokes
+     << " strokes with the kiosk's idle reset between them (the bubbles un-popped, as between "
+        "visitors), at the textures' [gains] and the default kiosk gains (+"
      << defaults.sound_gain_db << " dB sound, +" << defaults.haptic_gain_db
      << " dB transducer), measured from 0.1 s after touch-down: loudness in LUFS (BS.1770, "
         "ungated), transducer level in dB RMS (40–800 Hz).\n\n"
