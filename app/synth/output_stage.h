@@ -9,7 +9,8 @@
 //         haptic ceiling
 //         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
 //         haptic_enabled is false.
-// Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound (one-pole,
+// Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound, K-weighted
+// (BS.1770, as the textures' loudness is measured) (one-pole,
 // kLevellerWindowS, about a syllable: short enough to catch one loud stroke, long enough to leave
 // clicks and the texture's own rhythm alone) sets a gain of min(1, cap / RMS), which the sound
 // follows fast going down (kLevellerAttackS) and slowly back up (kLevellerReleaseS), so the level
@@ -43,21 +44,33 @@ struct Biquad {
   }
 };
 
-// Slow level control of one channel (see the stroke leveller above): cap is an RMS, 0 = off.
+// The K-weighting of ITU-R BS.1770-4 (Annex 1): a +4 dB high shelf above ~1.7 kHz (the head),
+// then a ~38 Hz high-pass (the RLB curve), as two biquads for sample rate `fs`. The standard gives
+// the 48 kHz coefficients; this designs them from the filters' analogue parameters (shelf
+// 1681.97 Hz, +4.00 dB, Q 0.7072; high-pass 38.14 Hz, Q 0.5003), which reproduce that table.
+std::array<Biquad, 2> KWeighting(double fs);
+
+// Slow level control of one channel (see the stroke leveller above): cap is a K-weighted RMS
+// (BS.1770: 10^((LUFS + 0.691) / 20) for a cap in LUFS), 0 = off. The detector hears the sound as
+// the loudness measure does, so a bright sound (broken glass: modes above 3 kHz, where the shelf
+// adds 4 dB) is held to the same loudness as a dull one, not to the same RMS.
 struct Leveller {
   double cap_square = 0.0;
-  double level_square = 0.0;  // running mean square of the input
+  double level_square = 0.0;  // running mean square of the K-weighted input
   double gain = 1.0;
   double level_step = 0.0, attack_step = 0.0, release_step = 0.0;
+  std::array<Biquad, 2> weighting{};
 
   void Prepare(double cap, double window_s, double attack_s, double release_s, double fs);
   void Reset() {
     level_square = 0.0;
     gain = 1.0;
+    for (auto& section : weighting) section.s1 = section.s2 = 0.0;
   }
   double Apply(double y) {
     if (!(cap_square > 0.0)) return y;
-    level_square += level_step * (y * y - level_square);
+    const double heard = weighting[1].Process(weighting[0].Process(y));
+    level_square += level_step * (heard * heard - level_square);
     const double want = level_square > cap_square ? std::sqrt(cap_square / level_square) : 1.0;
     gain += (want < gain ? attack_step : release_step) * (want - gain);
     return y * gain;
