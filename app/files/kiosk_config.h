@@ -47,7 +47,7 @@ struct KioskConfig {
   double low_vibration_db = 12.0;  // haptic attenuation while staff low-vibration mode is on, dB
   // Stroke leveller (synth/output_stage.h): a stroke's sound is held to this many LU above the
   // textures' calibrated level (output_gains.h); 0 turns it off.
-  double stroke_cap_lu = 6.0;
+  double stroke_cap_lu = 5.0;
   // Ambient-adaptive sound gain (ambient_gain.h): while idle, the microphone's room level moves an
   // extra sound gain between ambient_min_db and ambient_max_db, ambient_per_db dB per dB of room
   // level above ambient_quiet_dbfs, changing at most ambient_rate_db_per_s.

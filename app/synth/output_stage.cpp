@@ -76,7 +76,7 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
   low_vibration_ = params.low_vibration;
   sound_leveller_.Prepare(finite_or(params.sound_level_cap, 0.0), kLevellerWindowS,
-                          kLevellerAttackS, kLevellerReleaseS, sample_rate_hz);
+                          kLevellerAttackS, kLevellerReleaseS, kLevellerLandingS, sample_rate_hz);
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
@@ -100,8 +100,10 @@ void OutputStage::Reset() {
   sound_leveller_.Reset();
 }
 
-void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s, double fs) {
+void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s,
+                       double landing_s, double fs) {
   fs = std::max(fs, 1.0);
+  landing_samples = static_cast<int>(std::clamp(landing_s * fs, 0.0, 1e9));
   cap_square = cap > 0.0 && std::isfinite(cap) ? cap * cap : 0.0;
   level_step = 1.0 - std::exp(-1.0 / (window_s * fs));
   attack_step = 1.0 - std::exp(-1.0 / (attack_s * fs));
