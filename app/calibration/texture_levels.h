@@ -161,9 +161,10 @@ inline constexpr double kVisitIdleTimeoutS = 1.0;
 // with the kiosk's default +12 dB sound only the sharpest clicks pass the soft limiter's knee
 // (-6 dBFS) while the average level is room-filling. The transducer carries the contact force
 // too (synth::Scene), whose impacts on ridges and cracks are peakier still: its target sits lower
-// so that the calibration strokes stay under the knee, and the kiosk's default +32 dB puts a
-// typical stroke within ~15 dB of the transducer's ceiling, strong ones in the limiter's shoulder
-// (the skin needs a strong, steady signal; clipping is felt, not heard).
+// so that the calibration strokes stay under the knee, and the kiosk's default +33 dB puts a
+// typical stroke of every style within 15 dB of the transducer's ceiling (scrapes, the weakest,
+// by a dB or less: population_levels), strong ones in the limiter's shoulder (the skin needs a
+// strong, steady signal; clipping is felt, not heard).
 inline constexpr double kTargetSoundLufs = kCalibratedSoundLufs;
 inline constexpr double kTargetHapticRmsDb = -42.0;
 // Largest haptic gain the calibration gives a texture (see above).
