@@ -31,6 +31,9 @@ constexpr int kScreenHeightPx = 1080;
 // landing gets the stroke's correction too (stroke_gain.h). Between strokes the pen is up; the
 // ring of one stroke still under the next is part of the (deterministic) sequence.
 constexpr double kGapS = 0.15;
+// After the idle reset between visits: its switch to the default texture and the fade (well within
+// this) settle before the next visitor's stroke.
+constexpr double kVisitResetS = 0.5;
 
 double Round2(double db) {
   return std::round(db * 100.0) / 100.0;
@@ -217,6 +220,7 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   options.config.haptic_gain_db =
       measurement.global_haptic_gain_db + gains.haptic_gain_db - file.gains.haptic_gain_db;
   options.config.stroke_cap_lu = measurement.stroke_cap_lu;
+  if (measurement.strokes_per_visit > 0) options.config.idle_timeout_s = kVisitIdleTimeoutS;
   KioskEngine engine(options);
   if (!engine.texture_failures().empty()) throw RenderError(engine.texture_failures().front());
   VirtualVisit visit(engine);
@@ -226,6 +230,12 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   const double delay_s = visit.block_frames() / fs;
   std::vector<surface::FrameWindow> windows;
   for (const auto& stroke : measurement.strokes) {
+    const auto played = static_cast<int>(windows.size());
+    if (measurement.strokes_per_visit > 0 && played > 0 &&
+        played % measurement.strokes_per_visit == 0) {
+      // The visitor leaves: the idle reset, then its fade to the default texture.
+      visit.Advance(kVisitIdleTimeoutS + kVisitResetS);
+    }
     const double t_hover = visit.now_s();
     visit.Advance(stroke.pen.hover_s + stroke.pen.duration_s + kGapS,
                   StraightStroke(stroke.pen, t_hover, kScreenWidthPx, kScreenHeightPx));

@@ -138,16 +138,33 @@ struct LevelMeasurement {
   // Further textures loaded into the same engine, as in the kiosk (their [levels] tables join the
   // per-stroke reference); the measured texture is the engine's default one.
   std::vector<std::string> other_textures;
+  // Strokes per visit (0: every stroke in one visit). Between visits the pen stays up past the
+  // session's idle timeout (shortened to kVisitIdleTimeoutS), so the kiosk's own idle reset
+  // un-pops the bubble wrap as it does between visitors: a population played as one visit would
+  // measure a sheet its strokes have popped bare, which no visitor finds.
+  int strokes_per_visit = 0;
 };
+
+// The population's visits (VisitorPopulation played through MeasureStrokeLevels): a visitor's
+// strokes on one texture before the kiosk's idle reset. The soak's visitors (tests/kiosk) make
+// 3-12 actions, about half of them strokes, over all the textures; ten strokes on one texture is a
+// visitor who stays with it, so the bubble wrap is measured with more of its bubbles popped than
+// most visitors leave (a third of the population presses hard enough to pop every bubble it
+// crosses).
+inline constexpr int kVisitStrokes = 10;
+// The idle timeout of the measuring engine when strokes_per_visit is set (the kiosk's is 60 s:
+// rendering a minute of silence between visits would only cost time).
+inline constexpr double kVisitIdleTimeoutS = 1.0;
 
 // The calibration targets for the strokes' mean at the texture gains only (global gains 0 dB).
 // The loudest strokes' peaks lie up to ~26 dB above them (sound; bubble wrap: -9.7 dBFS), so
 // with the kiosk's default +12 dB sound only the sharpest clicks pass the soft limiter's knee
 // (-6 dBFS) while the average level is room-filling. The transducer carries the contact force
 // too (synth::Scene), whose impacts on ridges and cracks are peakier still: its target sits lower
-// so that the calibration strokes stay under the knee, and the kiosk's default +32 dB puts a
-// typical stroke within ~15 dB of the transducer's ceiling, strong ones in the limiter's shoulder
-// (the skin needs a strong, steady signal; clipping is felt, not heard).
+// so that the calibration strokes stay under the knee, and the kiosk's default +33 dB puts a
+// typical stroke of every style within 15 dB of the transducer's ceiling (scrapes, the weakest,
+// by a dB or less: population_levels), strong ones in the limiter's shoulder (the skin needs a
+// strong, steady signal; clipping is felt, not heard).
 inline constexpr double kTargetSoundLufs = kCalibratedSoundLufs;
 inline constexpr double kTargetHapticRmsDb = -42.0;
 // Largest haptic gain the calibration gives a texture (see above).

@@ -40,14 +40,14 @@ struct KioskConfig {
   std::string pen_seat = "seat0";
   // [gains] — deliberately high for a loud room; the output limiters keep samples in [-1, 1].
   double sound_gain_db = 12.0;
-  double haptic_gain_db = 32.0;
+  double haptic_gain_db = 33.0;
   // Final safety stage (synth/safety_stage.h): true-peak ceilings of what reaches the devices.
   double sound_ceiling_db = -1.0;  // speaker ceiling, dBTP (<= 0)
   double haptic_ceiling_db = 0.0;  // transducer peak ceiling, dBFS (<= 0): the haptic limiter's top
   double low_vibration_db = 12.0;  // haptic attenuation while staff low-vibration mode is on, dB
   // Stroke leveller (synth/output_stage.h): a stroke's sound is held to this many LU above the
   // textures' calibrated level (output_gains.h); 0 turns it off.
-  double stroke_cap_lu = 6.0;
+  double stroke_cap_lu = 5.0;
   // Ambient-adaptive sound gain (ambient_gain.h): while idle, the microphone's room level moves an
   // extra sound gain between ambient_min_db and ambient_max_db, ambient_per_db dB per dB of room
   // level above ambient_quiet_dbfs, changing at most ambient_rate_db_per_s.

@@ -6,6 +6,9 @@
 namespace sas::kiosk {
 namespace {
 
+// BS.1770's -0.691 dB between a K-weighted mean square and LUFS.
+constexpr double kLufsOffsetDb = 0.691;
+
 double FromDb(double db) {
   return std::pow(10.0, db / 20.0);
 }
@@ -22,8 +25,9 @@ synth::OutputParams KioskOutputParams(const KioskConfig& config,
   p.low_vibration_gain = FromDb(-config.low_vibration_db);
   p.low_vibration = low_vibration;
   if (config.stroke_cap_lu > 0.0) {
+    // The leveller's cap is a K-weighted RMS: LUFS = -0.691 + 10 log10(mean square) (BS.1770).
     p.sound_level_cap = FromDb(kCalibratedSoundLufs + config.sound_gain_db + ambient_gain_db +
-                               config.stroke_cap_lu);
+                               config.stroke_cap_lu + kLufsOffsetDb);
   }
   return p;
 }

@@ -16,8 +16,8 @@ namespace sas::kiosk {
 
 // The level the textures are calibrated to at their own [gains] (calibration/texture_levels.h): the
 // mean loudness of the calibration strokes, LUFS. The stroke leveller's cap sits
-// KioskConfig::stroke_cap_lu above it plus the configured and ambient gains (as an RMS: for the
-// textures' spectra the two agree within a few dB).
+// KioskConfig::stroke_cap_lu above it plus the configured and ambient gains (the leveller
+// K-weights the sound as the loudness measure does).
 inline constexpr double kCalibratedSoundLufs = -36.0;
 
 synth::OutputParams KioskOutputParams(const KioskConfig& config,

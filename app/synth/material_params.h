@@ -96,9 +96,9 @@ struct OutputParams {
   // Scene::SetLowVibration(); `low_vibration` is the state after Prepare().
   double low_vibration_gain = 0.25;
   bool low_vibration = false;
-  // Stroke leveller on the sound (linear RMS, 0 = off): where the sound's running RMS (after the
-  // gains) rises over this, its gain comes down to meet it, so a squeak or a fast hard scrape
-  // stands out without blasting. See OutputStage.
+  // Stroke leveller on the sound (linear K-weighted RMS, BS.1770; 0 = off): where the sound's
+  // running K-weighted RMS (after the gains) rises over this, its gain comes down to meet it, so a
+  // squeak or a fast hard scrape stands out without blasting. See OutputStage.
   double sound_level_cap = 0.0;
 };
 

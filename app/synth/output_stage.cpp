@@ -37,6 +37,34 @@ Biquad HighPass(double cutoff_hz, double q, double fs) {
 
 }  // namespace
 
+std::array<Biquad, 2> KWeighting(double fs) {
+  fs = std::max(fs, 1.0);
+  std::array<Biquad, 2> k;
+  {  // the high shelf
+    const double f0 = 1681.974450955533, gain_db = 3.999843853973347, q = 0.7071752369554196;
+    const double t = std::tan(std::numbers::pi * f0 / fs);
+    const double vh = std::pow(10.0, gain_db / 20.0);
+    const double vb = std::pow(vh, 0.4996667741545416);
+    const double a0 = 1.0 + t / q + t * t;
+    k[0].b0 = (vh + vb * t / q + t * t) / a0;
+    k[0].b1 = 2.0 * (t * t - vh) / a0;
+    k[0].b2 = (vh - vb * t / q + t * t) / a0;
+    k[0].a1 = 2.0 * (t * t - 1.0) / a0;
+    k[0].a2 = (1.0 - t / q + t * t) / a0;
+  }
+  {  // the high-pass (unnormalised numerator 1, -2, 1, as in the standard)
+    const double f0 = 38.13547087602444, q = 0.5003270373238773;
+    const double t = std::tan(std::numbers::pi * f0 / fs);
+    const double a0 = 1.0 + t / q + t * t;
+    k[1].b0 = 1.0;
+    k[1].b1 = -2.0;
+    k[1].b2 = 1.0;
+    k[1].a1 = 2.0 * (t * t - 1.0) / a0;
+    k[1].a2 = (1.0 - t / q + t * t) / a0;
+  }
+  return k;
+}
+
 void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   auto finite_or = [](double v, double fallback) { return std::isfinite(v) ? v : fallback; };
   sound_gain_ = finite_or(params.sound_gain, 0.0);
@@ -48,7 +76,7 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
   low_vibration_ = params.low_vibration;
   sound_leveller_.Prepare(finite_or(params.sound_level_cap, 0.0), kLevellerWindowS,
-                          kLevellerAttackS, kLevellerReleaseS, sample_rate_hz);
+                          kLevellerAttackS, kLevellerReleaseS, kLevellerLandingS, sample_rate_hz);
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
@@ -72,12 +100,15 @@ void OutputStage::Reset() {
   sound_leveller_.Reset();
 }
 
-void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s, double fs) {
+void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s,
+                       double landing_s, double fs) {
   fs = std::max(fs, 1.0);
+  landing_samples = static_cast<int>(std::clamp(landing_s * fs, 0.0, 1e9));
   cap_square = cap > 0.0 && std::isfinite(cap) ? cap * cap : 0.0;
   level_step = 1.0 - std::exp(-1.0 / (window_s * fs));
   attack_step = 1.0 - std::exp(-1.0 / (attack_s * fs));
   release_step = 1.0 - std::exp(-1.0 / (release_s * fs));
+  weighting = KWeighting(fs);
   Reset();
 }
 

@@ -9,11 +9,14 @@
 //         haptic ceiling
 //         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
 //         haptic_enabled is false.
-// Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound (one-pole,
+// Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound, K-weighted
+// (BS.1770, as the textures' loudness is measured) (one-pole,
 // kLevellerWindowS, about a syllable: short enough to catch one loud stroke, long enough to leave
 // clicks and the texture's own rhythm alone) sets a gain of min(1, cap / RMS), which the sound
 // follows fast going down (kLevellerAttackS) and slowly back up (kLevellerReleaseS), so the level
-// of a loud stroke is brought towards the cap without pumping. Peaks are the soft limiter's and
+// of a loud stroke is brought towards the cap without pumping. When the pen lands for a new stroke
+// (NewStroke, from the scene) the gain lets go at the attack's pace: one stroke's level is not
+// carried into the next. Peaks are the soft limiter's and
 // the final safety stage's job.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
@@ -43,23 +46,63 @@ struct Biquad {
   }
 };
 
-// Slow level control of one channel (see the stroke leveller above): cap is an RMS, 0 = off.
+// The K-weighting of ITU-R BS.1770-4 (Annex 1): a +4 dB high shelf above ~1.7 kHz (the head),
+// then a ~38 Hz high-pass (the RLB curve), as two biquads for sample rate `fs`. The standard gives
+// the 48 kHz coefficients; this designs them from the filters' analogue parameters (shelf
+// 1681.97 Hz, +4.00 dB, Q 0.7072; high-pass 38.14 Hz, Q 0.5003), which reproduce that table.
+std::array<Biquad, 2> KWeighting(double fs);
+
+// Slow level control of one channel (see the stroke leveller above): cap is a K-weighted RMS
+// (BS.1770: 10^((LUFS + 0.691) / 20) for a cap in LUFS), 0 = off. The detector hears the sound as
+// the loudness measure does, so a bright sound (broken glass: modes above 3 kHz, where the shelf
+// adds 4 dB) is held to the same loudness as a dull one, not to the same RMS.
 struct Leveller {
   double cap_square = 0.0;
-  double level_square = 0.0;  // running mean square of the input
+  double level_square = 0.0;  // running mean square of the K-weighted input
   double gain = 1.0;
   double level_step = 0.0, attack_step = 0.0, release_step = 0.0;
+  bool landing = false;   // a new stroke: let go at the attack's pace (NewStroke)
+  int landing_samples = 0;  // the landing's length in samples (Prepare)
+  int landing_left = 0;     // samples of the current landing the detector still ignores
+  std::array<Biquad, 2> weighting{};
 
-  void Prepare(double cap, double window_s, double attack_s, double release_s, double fs);
+  void Prepare(double cap, double window_s, double attack_s, double release_s, double landing_s,
+               double fs);
   void Reset() {
     level_square = 0.0;
     gain = 1.0;
+    landing = false;
+    landing_left = 0;
+    for (auto& section : weighting) section.s1 = section.s2 = 0.0;
+  }
+  // The pen lands for a new stroke. The level measured so far was the last stroke's, and the gain
+  // that held it down comes back within a few attack times instead of the slow release, so a
+  // soft stroke after a loud one is not muted for a second (the slow release is there to keep a
+  // stroke from pumping, not to carry one stroke's level into the next). The landing click itself
+  // is a tap, not the stroke's level: the detector ignores it (its peak is the soft limiter's),
+  // else a click 7 LU over the cap (wood) pulled the whole stroke after it down by 2-4 dB through
+  // the slow release.
+  void NewStroke() {
+    level_square = 0.0;
+    landing = gain < 1.0;
+    landing_left = landing_samples;
   }
   double Apply(double y) {
     if (!(cap_square > 0.0)) return y;
-    level_square += level_step * (y * y - level_square);
+    const double heard = weighting[1].Process(weighting[0].Process(y));
+    if (landing_left > 0) {
+      --landing_left;
+    } else {
+      level_square += level_step * (heard * heard - level_square);
+    }
     const double want = level_square > cap_square ? std::sqrt(cap_square / level_square) : 1.0;
-    gain += (want < gain ? attack_step : release_step) * (want - gain);
+    if (want < gain) {
+      landing = false;
+      gain += attack_step * (want - gain);
+    } else {
+      gain += (landing ? attack_step : release_step) * (want - gain);
+      if (landing && gain > 0.999) landing = false;
+    }
     return y * gain;
   }
 };
@@ -73,6 +116,10 @@ class OutputStage {
   static constexpr double kLevellerWindowS = 0.05;
   static constexpr double kLevellerAttackS = 0.005;
   static constexpr double kLevellerReleaseS = 0.5;
+  // How long after the pen lands the leveller ignores the sound (the landing click and the first
+  // of its ring). Shorter, wood's ring (still ~10 LU over the stroke 50 ms after landing) trips
+  // it; longer, a short loud stroke plays that much longer before the leveller catches it.
+  static constexpr double kLevellerLandingS = 0.075;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();
@@ -110,6 +157,9 @@ class OutputStage {
     }
     *haptic = static_cast<float>(haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y));
   }
+
+  // Real-time safe: the pen landed for a new stroke (Leveller::NewStroke).
+  void NewStroke() { sound_leveller_.NewStroke(); }
 
   // Real-time safe: starts the ramp to the low-vibration trim (on) or back to 1 (off).
   void SetLowVibration(bool on);

@@ -318,6 +318,7 @@ struct Scene::Impl {
     if (c.tip_down && !was_down) {
       Release(-c.landing_speed_mps);
       burst_flight = false;
+      output.NewStroke();
     } else if (!c.tip_down && was_down) {
       probe = ProbeDynamics{};  // lifted: parked, bristle relaxed
     }

@@ -72,3 +72,76 @@ TEST_CASE("stroke leveller: a 2 ms click over the cap keeps most of its peak") {
   for (const float v : click) peak = std::max(peak, static_cast<double>(std::fabs(v)));
   CHECK(20.0 * std::log10(peak / amplitude) > -3.0);
 }
+
+TEST_CASE("stroke leveller: its K-weighting at 48 kHz is BS.1770's coefficient table") {
+  const auto k = sas::synth::KWeighting(48000.0);
+  CHECK(k[0].b0 == Approx(1.53512485958697).margin(1e-8));
+  CHECK(k[0].b1 == Approx(-2.69169618940638).margin(1e-8));
+  CHECK(k[0].b2 == Approx(1.19839281085285).margin(1e-8));
+  CHECK(k[0].a1 == Approx(-1.69065929318241).margin(1e-8));
+  CHECK(k[0].a2 == Approx(0.73248077421585).margin(1e-8));
+  CHECK(k[1].b0 == 1.0);
+  CHECK(k[1].b1 == -2.0);
+  CHECK(k[1].b2 == 1.0);
+  CHECK(k[1].a1 == Approx(-1.99004745483398).margin(1e-8));
+  CHECK(k[1].a2 == Approx(0.99007225036621).margin(1e-8));
+}
+
+TEST_CASE("stroke leveller: a bright sound is held to the same loudness as a dull one") {
+  // 5 kHz sits on the K-weighting's +4 dB shelf: at the same cap its RMS settles ~4 dB lower than
+  // a 700 Hz sine's, as the loudness measure hears the two alike.
+  const double cap = std::pow(10.0, -30.0 / 20.0);
+  const auto settle = [&](double hz) {
+    OutputStage stage = Stage(cap);
+    const double amplitude = std::sqrt(2.0) * cap * std::pow(10.0, 12.0 / 20.0);
+    std::vector<float> out(static_cast<std::size_t>(kFs));
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      float haptic = 0.0f;
+      stage.Process(amplitude * std::sin(2.0 * kPi * hz * static_cast<double>(i) / kFs), &out[i],
+                    &haptic);
+    }
+    return RmsDb(out, out.size() / 2, out.size());
+  };
+  const double dull = settle(700.0), bright = settle(5000.0);
+  CHECK(dull - bright == Approx(3.6).margin(0.6));
+}
+
+TEST_CASE("stroke leveller: a soft stroke after a loud one starts at full level") {
+  const double cap = std::pow(10.0, -30.0 / 20.0);
+  const double loud = std::sqrt(2.0) * cap * std::pow(10.0, 15.0 / 20.0);
+  const double soft = std::sqrt(2.0) * cap * std::pow(10.0, -6.0 / 20.0);
+  OutputStage reference = Stage(0.0);
+  const std::vector<float> free = PlaySine(reference, soft, 0.1);
+  const double free_db = RmsDb(free, free.size() / 2, free.size());
+  // Held down by the loud stroke, the soft one that follows without a new stroke stays muted
+  // (the slow release), and comes back once the pen lands anew.
+  OutputStage held = Stage(cap);
+  PlaySine(held, loud, 0.5);
+  const std::vector<float> muted = PlaySine(held, soft, 0.1);
+  CHECK(RmsDb(muted, muted.size() / 2, muted.size()) < free_db - 6.0);
+  OutputStage landed = Stage(cap);
+  PlaySine(landed, loud, 0.5);
+  landed.NewStroke();
+  const std::vector<float> fresh = PlaySine(landed, soft, 0.1);
+  CHECK(RmsDb(fresh, fresh.size() / 2, fresh.size()) == Approx(free_db).margin(0.3));
+}
+
+TEST_CASE("stroke leveller: a landing click does not hold the stroke after it down") {
+  const double cap = std::pow(10.0, -30.0 / 20.0);
+  const double click = std::sqrt(2.0) * cap * std::pow(10.0, 10.0 / 20.0);
+  const double soft = std::sqrt(2.0) * cap * std::pow(10.0, -6.0 / 20.0);
+  const double click_s = 0.5 * OutputStage::kLevellerLandingS;
+  OutputStage reference = Stage(0.0);
+  const std::vector<float> free = PlaySine(reference, soft, 0.3);
+  const double free_db = RmsDb(free, free.size() / 2, free.size());
+  // A click within the landing, then the stroke's own (soft) sound.
+  const auto stroke_db = [&](bool landed) {
+    OutputStage stage = Stage(cap);
+    if (landed) stage.NewStroke();
+    PlaySine(stage, click, click_s);
+    const std::vector<float> after = PlaySine(stage, soft, 0.3);
+    return RmsDb(after, after.size() / 2, after.size());
+  };
+  CHECK(stroke_db(true) == Approx(free_db).margin(0.1));
+  CHECK(stroke_db(false) < free_db - 1.0);  // the same click mid-stroke is levelled
+}
