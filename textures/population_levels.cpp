@@ -98,6 +98,10 @@ int main(int argc, char** argv) {
   app.add_option("--strokes", count, "population size (default 200)")->check(CLI::Range(3, 5000));
   app.add_option("--seed", seed, "population seed (default 2026)");
   app.add_option("--docs", docs, "write population-levels.md here");
+  std::string config_path;
+  app.add_option("--config", config_path,
+                 "a kiosk configuration file whose gains and leveller to play at (default: the "
+                 "built-in defaults, which the document is about)");
   double duration_scale = 1.0;
   app.add_option("--duration-scale", duration_scale,
                  "shorten every stroke by this factor (a quick run; default 1)")
@@ -105,7 +109,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const auto strokes = sas::kiosk::VisitorPopulation(count, seed, duration_scale);
-    const sas::kiosk::KioskConfig defaults;
+    const sas::kiosk::KioskConfig defaults =
+        config_path.empty() ? sas::kiosk::KioskConfig{} : sas::kiosk::LoadKioskConfig(config_path);
     const std::vector<std::string> paths = sas::kiosk::KioskTexturePaths(textures);
     std::vector<sas::kiosk::PopulationLevels> rows;
     for (std::size_t t = 0; t < paths.size(); ++t) {
