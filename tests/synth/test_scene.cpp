@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -71,6 +72,45 @@ std::vector<TimedCommand> Gesture() {
   c.velocity_mps = 1.5;
   g.push_back({15000, c});
   return g;
+}
+
+// Where a rolling ball is checked against the full scan: `points` places from (x0, y0) in steps
+// of (sx, sy) pixels, the track turning by `turn` radians each, for each penetration and width.
+struct RollCheckPlaces {
+  double x0, sx, y0, sy, turn;
+  int points;
+  double min_radius_m;  // the ball's radius when the probe is narrower (the pen's own ball)
+};
+
+// The rolling ball's felt height by the maximum over all 2n + 1 points of the ball along its
+// track, compared bit for bit with SurfaceReader::Felt; counts the places and those felt.
+void CheckRollAgainstFullScan(const SurfaceReader& reader, double pitch,
+                              std::initializer_list<double> penetrations, const RollCheckPlaces& at,
+                              int& compared, int& felt) {
+  for (double penetration : penetrations) {
+    for (double width : {0.0, 0.9e-3, 4e-3}) {
+      for (int k = 0; k < at.points; ++k) {
+        const double x = (at.x0 + at.sx * k) * pitch, y = (at.y0 + at.sy * k) * pitch;
+        const double angle = at.turn * k;
+        const double dx = std::cos(angle), dy = std::sin(angle);
+        const double r = std::max(at.min_radius_m, 0.5 * width);
+        const int n = static_cast<int>(std::clamp(r / pitch, 1.0, 64.0));
+        const double ds = r / n;
+        double full = -1e300;
+        for (int i = -n; i <= n; ++i) {
+          const double s = i * ds;
+          const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
+          full = std::max(full, reader.BoxMean(x + s * dx, y + s * dy, width) + lift);
+        }
+        const double expected = std::max(full - (reader.max_height_m() - penetration), 0.0);
+        const double got =
+            reader.Felt(x, y, width, penetration, ProbeStyle::kRoll, at.min_radius_m, dx, dy);
+        CHECK(got == expected);
+        ++compared;
+        if (expected > 0.0) ++felt;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -261,29 +301,8 @@ TEST_CASE("the rolling ball's envelope equals the full scan over every point of 
   SurfaceReader reader;
   reader.Prepare(field.view);
   int compared = 0, felt = 0;
-  for (double penetration : {0.0, 2e-6, 20e-6, 80e-6, 250e-6}) {
-    for (double width : {0.0, 0.9e-3, 4e-3}) {
-      for (int k = 0; k < 40; ++k) {
-        const double x = (10.0 + 2.37 * k) * pitch, y = (20.0 + 1.61 * k) * pitch;
-        const double angle = 0.7 * k;
-        const double dx = std::cos(angle), dy = std::sin(angle);
-        const double r = std::max(2e-3, 0.5 * width);
-        const int n = static_cast<int>(std::clamp(r / pitch, 1.0, 64.0));
-        const double ds = r / n;
-        double full = -1e300;
-        for (int i = -n; i <= n; ++i) {
-          const double s = i * ds;
-          const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
-          full = std::max(full, reader.BoxMean(x + s * dx, y + s * dy, width) + lift);
-        }
-        const double expected = std::max(full - (reader.max_height_m() - penetration), 0.0);
-        const double got = reader.Felt(x, y, width, penetration, ProbeStyle::kRoll, 2e-3, dx, dy);
-        CHECK(got == expected);
-        ++compared;
-        if (expected > 0.0) ++felt;
-      }
-    }
-  }
+  CheckRollAgainstFullScan(reader, pitch, {0.0, 2e-6, 20e-6, 80e-6, 250e-6},
+                           {10.0, 2.37, 20.0, 1.61, 0.7, 40, 2e-3}, compared, felt);
   // Both outcomes are exercised: touching and not touching the felt part.
   CHECK(felt > compared / 5);
   CHECK(felt < compared);
@@ -317,29 +336,8 @@ TEST_CASE(
   SurfaceReader reader;
   reader.Prepare(field.view);
   int compared = 0, felt = 0;
-  for (double penetration : {0.0, 20e-6, 120e-6, 400e-6, 700e-6}) {
-    for (double width : {0.0, 0.9e-3, 4e-3}) {
-      for (int k = 0; k < 60; ++k) {
-        const double x = (-8.0 + 2.77 * k) * pitch, y = (-6.0 + 2.03 * k) * pitch;
-        const double angle = 0.9 * k;
-        const double dx = std::cos(angle), dy = std::sin(angle);
-        const double r = std::max(1e-3, 0.5 * width);
-        const int n = static_cast<int>(std::clamp(r / pitch, 1.0, 64.0));
-        const double ds = r / n;
-        double full = -1e300;
-        for (int i = -n; i <= n; ++i) {
-          const double s = i * ds;
-          const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
-          full = std::max(full, reader.BoxMean(x + s * dx, y + s * dy, width) + lift);
-        }
-        const double expected = std::max(full - (reader.max_height_m() - penetration), 0.0);
-        const double got = reader.Felt(x, y, width, penetration, ProbeStyle::kRoll, 1e-3, dx, dy);
-        CHECK(got == expected);
-        ++compared;
-        if (expected > 0.0) ++felt;
-      }
-    }
-  }
+  CheckRollAgainstFullScan(reader, pitch, {0.0, 20e-6, 120e-6, 400e-6, 700e-6},
+                           {-8.0, 2.77, -6.0, 2.03, 0.9, 60, 1e-3}, compared, felt);
   CHECK(felt > compared / 5);
   CHECK(felt < compared);
 }

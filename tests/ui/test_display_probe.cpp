@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "no_display_server.h"
 #include "ui/display_probe.h"
 
 TEST_CASE("the offscreen video driver is reported as a display with a desktop size", "[render]") {
@@ -26,16 +27,11 @@ TEST_CASE("an unusable video driver is reported as no display, with the reason",
 
 TEST_CASE("without a display server SDL's automatic offscreen fallback does not count as a display",
           "[render]") {
-  unsetenv("SDL_VIDEODRIVER");
-  const char* x_display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  const std::string saved_display = x_display ? x_display : "";
-  const std::string saved_wayland = wayland ? wayland : "";
-  unsetenv("DISPLAY");
-  unsetenv("WAYLAND_DISPLAY");
-  const auto info = sas::ui::ProbeDisplay();
-  if (!saved_display.empty()) setenv("DISPLAY", saved_display.c_str(), 1);
-  if (!saved_wayland.empty()) setenv("WAYLAND_DISPLAY", saved_wayland.c_str(), 1);
+  sas::ui::DisplayInfo info;
+  {
+    const sas::test::NoDisplayServer none;
+    info = sas::ui::ProbeDisplay();
+  }
   // On a box whose KMSDRM works this is a real display; everywhere else it must be "none".
   if (info.available) {
     CHECK(info.driver == "KMSDRM");

@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "no_display_server.h"
 #include "ui/kiosk_window.h"
 #include "ui/texture_view.h"
 
@@ -403,15 +404,9 @@ TEST_CASE(
     "with no display the kiosk window refuses SDL's automatic offscreen fallback (nobody would "
     "see it) and says so",
     "[render]") {
-  unsetenv("SDL_VIDEODRIVER");
-  const char* x_display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  const std::string saved_display = x_display ? x_display : "";
-  const std::string saved_wayland = wayland ? wayland : "";
-  unsetenv("DISPLAY");
-  unsetenv("WAYLAND_DISPLAY");
   std::string driver, error;
   {
+    const sas::test::NoDisplayServer none;
     KioskWindow window;
     try {
       window.Open();
@@ -420,8 +415,6 @@ TEST_CASE(
       error = e.what();
     }
   }
-  if (!saved_display.empty()) setenv("DISPLAY", saved_display.c_str(), 1);
-  if (!saved_wayland.empty()) setenv("WAYLAND_DISPLAY", saved_wayland.c_str(), 1);
   // On a box whose KMSDRM works the window is real; everywhere else it must not open.
   if (error.empty()) {
     CHECK(driver == "KMSDRM");
