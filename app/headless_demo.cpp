@@ -9,7 +9,9 @@
 #include <optional>
 #include <span>
 
+#include "calibration/population_levels.h"
 #include "calibration/texture_levels.h"
+#include "kiosk/data_dirs.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/synthetic_voice.h"
 #include "kiosk/virtual_visit.h"
@@ -154,6 +156,60 @@ class Visit {
 
 }  // namespace
 
+// The level matching judged as the tests judge it (calibration/population_levels.h): the visitor
+// population played on the textures this visit loaded, at the kiosk's default gains (~15 s).
+static void PrintPopulation(std::FILE* out, const kiosk::KioskEngine& engine, bool quick) {
+  if (quick) {
+    std::fprintf(out, "  visitor population: left out of the quick visit "
+                      "(docs/population-levels.md has its figures)\n");
+    return;
+  }
+  std::vector<std::string> paths;
+  for (const auto& path : kiosk::FindTextureFiles()) {
+    const std::string key = fs::path(path).parent_path().filename().string();
+    for (const auto& texture : engine.textures()) {
+      if (texture.key == key) paths.push_back(path);
+    }
+  }
+  if (paths.size() < 2) {
+    std::fprintf(out, "  visitor population: left out (it compares two textures or more)\n");
+    return;
+  }
+  const kiosk::KioskConfig defaults;
+  const int count = 200;
+  const unsigned seed = 2026;
+  const auto strokes = kiosk::VisitorPopulation(count, seed);
+  std::vector<kiosk::PopulationLevels> rows;
+  for (std::size_t t = 0; t < paths.size(); ++t) {
+    rows.push_back(kiosk::MeasurePopulation(paths, t, strokes, defaults));
+  }
+  const auto targets = kiosk::CheckPopulationTargets(rows, defaults.haptic_ceiling_db);
+  std::fprintf(out,
+               "  visitor population (%d strokes, seed %u, the default gains), per texture: median "
+               "loudness (against the mean of the medians), its 5-95 %% spread, the loudest stroke "
+               "over the median, median vibration, and the medians of scrape / rub / roll:\n",
+               count, seed);
+  for (const auto& r : rows) {
+    const auto style = [&](const char* k) {
+      return r.per_style.count(k) ? r.per_style.at(k).first : 0.0;
+    };
+    std::fprintf(out,
+                 "    %-15s %.1f LUFS (%+.1f LU), %.1f to %.1f, loudest +%.1f LU; vibration "
+                 "%.1f dB (%+.1f); %.1f / %.1f / %.1f LUFS\n",
+                 (r.name + ":").c_str(), r.sound_median, r.sound_median - targets.mean_sound,
+                 r.sound_p5, r.sound_p95, r.sound_max - r.sound_median, r.haptic_median,
+                 r.haptic_median - targets.mean_haptic, style("scrape"), style("rub"),
+                 style("roll"));
+  }
+  const auto holds = [](bool ok) { return ok ? "holds" : "DOES NOT HOLD"; };
+  std::fprintf(out,
+               "    targets: medians within %.0f LU: %s; vibration medians within %.1f dB: %s; no "
+               "stroke over %.0f LU above its median: %s; felt on every style: %s\n",
+               kiosk::kSoundSpreadLu, holds(targets.sound), kiosk::kHapticSpreadDb,
+               holds(targets.haptic), kiosk::kLoudestOverMedianLu, holds(targets.loudest),
+               holds(targets.felt));
+}
+
 // A step of the visit that needs a texture which did not load: said on the console and in
 // visit.txt, so a shorter visit is never mistaken for the whole one.
 static void Skipped(std::FILE* out, std::string* report, const std::string& what) {
@@ -197,6 +253,14 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     } styles[] = {{"scrape", 0.0, synth::ProbeStyle::kScrape},
                   {"rub", 55.0, synth::ProbeStyle::kRub},
                   {"roll", 0.0, synth::ProbeStyle::kRoll}};
+    // Each style three times on every texture: a stroke along the screen, then two crossing it
+    // at its middle, rising and falling at 35°. One straight line is not a texture's typical
+    // stroke (along the wooden board's grain a stroke barely catches, ~15 dB under one across it),
+    // and the comparison below is of the textures, not of one line on each.
+    const struct {
+      const char* suffix;
+      double angle_deg;  // the crossing strokes' angle, 600 px long; none: the stroke along
+    } directions[] = {{"", 0.0}, {"_rising", 35.0}, {"_falling", -35.0}};
     const auto& textures = visit.engine().textures();
     for (std::size_t t = 0; t < textures.size(); ++t) {
       visit.Token(static_cast<int>(t));  // a token on switch t: name cue, cross-fade
@@ -204,39 +268,67 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
       visit.SavePlain(textures[t].key);
       int row = 0;
       for (const auto& style : styles) {
-        // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
-        // each style is heard on intact bubbles; popping comes next.
-        kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
-        stroke.tilt_deg = style.tilt_deg;
-        stroke.style = style.style;
-        stroke.hover_s = 0.04;  // the hand comes in moving (the per-stroke gain knows its speed)
-        report += visit.DoStroke(textures[t].key + "_" + style.name, stroke);
+        for (const auto& direction : directions) {
+          // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
+          // each style is heard on intact bubbles; popping comes next.
+          kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
+          if (direction.angle_deg != 0.0) {
+            const double angle = direction.angle_deg * kPi / 180.0;
+            const double half_x = 300.0 * std::cos(angle) / options.width_px;
+            const double half_y = 300.0 * std::sin(angle) / options.height_px;
+            const double cx = 0.5 * (stroke.x0 + stroke.x1), cy = 0.5 * (stroke.y0 + stroke.y1);
+            stroke.x0 = cx - half_x;
+            stroke.y0 = cy + half_y;
+            stroke.x1 = cx + half_x;
+            stroke.y1 = cy - half_y;
+          }
+          stroke.tilt_deg = style.tilt_deg;
+          stroke.style = style.style;
+          stroke.hover_s = 0.04;  // the hand comes in moving (the per-stroke gain knows its speed)
+          report += visit.DoStroke(textures[t].key + "_" + style.name + direction.suffix, stroke);
+        }
         ++row;
       }
     }
-    // The same stroke on every texture: how far apart their levels are (levels/stroke_gain.h).
+    // The same strokes on every texture: how far apart their levels are (levels/stroke_gain.h),
+    // each texture's level the power mean of a style's three strokes.
     if (!options.quiet) {
       for (const auto& style : styles) {
         double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
         std::string each;
         for (const auto& texture : textures) {
-          const auto found = visit.levels().find(texture.key + "_" + style.name);
-          if (found == visit.levels().end()) continue;
+          double power[2] = {0.0, 0.0};
+          int found = 0;
+          for (const auto& direction : directions) {
+            const auto it =
+                visit.levels().find(texture.key + "_" + style.name + direction.suffix);
+            if (it == visit.levels().end()) continue;
+            power[0] += std::pow(10.0, it->second.first / 10.0);
+            power[1] += std::pow(10.0, it->second.second / 10.0);
+            ++found;
+          }
+          if (found == 0) continue;
+          const double level[2] = {10.0 * std::log10(power[0] / found),
+                                   10.0 * std::log10(power[1] / found)};
           char text[96];
           std::snprintf(text, sizeof text, "%s%s %.1f/%.1f", each.empty() ? "" : ", ",
-                        texture.key.c_str(), found->second.first, found->second.second);
+                        texture.key.c_str(), level[0], level[1]);
           each += text;
-          const double level[2] = {found->second.first, found->second.second};
           for (int c = 0; c < 2; ++c) {
             lo[c] = std::min(lo[c], level[c]);
             hi[c] = std::max(hi[c], level[c]);
           }
         }
         std::fprintf(out,
-                     "  the same %s stroke on the %zu textures: loudness within %.1f dB, "
+                     "  the same %s strokes on the %zu textures: loudness within %.1f LU, "
                      "vibration within %.1f dB (LUFS/dB RMS: %s)\n",
                      style.name, textures.size(), hi[0] - lo[0], hi[1] - lo[1], each.c_str());
+        char line[128];
+        std::snprintf(line, sizeof line, "spread %s loudness_lu=%.2f vibration_db=%.2f\n",
+                      style.name, hi[0] - lo[0], hi[1] - lo[1]);
+        report += line;
       }
+      PrintPopulation(out, visit.engine(), options.quick);
     }
     // Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).
     {

@@ -4,6 +4,7 @@
 // [gains] and the kiosk's default global gains.
 //
 //   population_levels [--textures DIR] [--strokes N] [--seed S] [--duration-scale F] [--docs DIR]
+//                     [--readme README.md]
 //
 // Prints, and with --docs writes DIR/population-levels.md: per texture the median stroke loudness
 // (LUFS) and transducer level (dB RMS), their 5th–95th percentile spread, the loudest stroke over
@@ -70,6 +71,8 @@ std::string LevelsMarkdown(const std::vector<sas::kiosk::PopulationLevels>& rows
                   s("roll").second);
     md << line;
   }
+  md << "\nThe loudest stroke on each texture:\n\n";
+  for (const auto& r : rows) md << "- " << r.name << ": " << r.loudest_stroke << "\n";
   md << "\nTargets: median loudness within ±1 LU of the mean of the four: **" << HoldsText(targets.sound)
      << "**; median transducer level within ±1.5 dB: **" << HoldsText(targets.haptic)
      << "**; no stroke more than 10 LU over its "
@@ -77,6 +80,54 @@ std::string LevelsMarkdown(const std::vector<sas::kiosk::PopulationLevels>& rows
      << "**; every style's median transducer level within 15 dB of the transducer ceiling ("
      << defaults.haptic_ceiling_db << " dBFS): **" << HoldsText(targets.felt) << "**.\n";
   return md.str();
+}
+
+// The README's short table (between its population-levels markers): what staff and installers
+// read of the level matching, written with the document so the two never disagree.
+std::string ReadmeBlock(const std::vector<sas::kiosk::PopulationLevels>& rows, int count,
+                        const sas::kiosk::KioskConfig& defaults) {
+  const sas::kiosk::PopulationTargets targets =
+      sas::kiosk::CheckPopulationTargets(rows, defaults.haptic_ceiling_db);
+  std::ostringstream md;
+  md << "Measured by `population_levels` on " << count
+     << " generated visitor strokes per texture (scrape, rub and roll, slow to fast, light to "
+        "firm) at the default gains; details in `docs/population-levels.md`.\n\n"
+        "| texture | median loudness | loudest stroke | median vibration |\n"
+        "|---|---|---|---|\n";
+  char line[256];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line,
+                  "| %s | %.1f LUFS (%+.1f LU from the mean) | %.1f LU over the median | %.1f dB "
+                  "(%+.1f dB) |\n",
+                  r.name.c_str(), r.sound_median, r.sound_median - targets.mean_sound,
+                  r.sound_max - r.sound_median, r.haptic_median,
+                  r.haptic_median - targets.mean_haptic);
+    md << line;
+  }
+  md << "\nThe aims: medians within ±" << sas::kiosk::kSoundSpreadLu << " LU and ±"
+     << sas::kiosk::kHapticSpreadDb << " dB of the mean, no stroke over "
+     << sas::kiosk::kLoudestOverMedianLu << " LU above its texture's median: "
+     << (targets.all() ? "all met" : "**not all met**") << ".\n";
+  return md.str();
+}
+
+// Replaces the text between the README's markers with `block`.
+void WriteReadme(const std::string& path, const std::string& block) {
+  const std::string begin = "<!-- population-levels: written by population_levels --readme -->\n";
+  const std::string end = "<!-- population-levels end -->";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string readme = text.str();
+  const auto from = readme.find(begin);
+  const auto to = readme.find(end);
+  if (!in || from == std::string::npos || to == std::string::npos || to < from) {
+    throw std::runtime_error(path + " has no population-levels markers");
+  }
+  readme.replace(from + begin.size(), to - from - begin.size(), block);
+  std::ofstream out(path);
+  out << readme;
+  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 void WriteDocs(const std::string& docs, const std::string& md) {
@@ -98,6 +149,9 @@ int main(int argc, char** argv) {
   app.add_option("--strokes", count, "population size (default 200)")->check(CLI::Range(3, 5000));
   app.add_option("--seed", seed, "population seed (default 2026)");
   app.add_option("--docs", docs, "write population-levels.md here");
+  std::string readme;
+  app.add_option("--readme", readme,
+                 "rewrite the figures between this README's population-levels markers");
   std::string config_path;
   app.add_option("--config", config_path,
                  "a kiosk configuration file whose gains and leveller to play at (default: the "
@@ -120,6 +174,7 @@ int main(int argc, char** argv) {
     const std::string md = LevelsMarkdown(rows, count, seed, duration_scale, defaults);
     std::printf("%s", md.c_str());
     if (!docs.empty()) WriteDocs(docs, md);
+    if (!readme.empty()) WriteReadme(readme, ReadmeBlock(rows, count, defaults));
   } catch (const std::exception& error) {
     std::fprintf(stderr, "population_levels: %s\n", error.what());
     return 1;

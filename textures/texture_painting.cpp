@@ -129,6 +129,8 @@ struct TextureText {
   double probe_width_mm;
   double probe_penetration_mm;
   const char* probe_style;
+  double sound_trim_db = 0.0;
+  const char* sound_trim_why = "";
 };
 
 // A length as the texture files write it: no trailing zeros, but at least one decimal ("4.0").
@@ -154,6 +156,8 @@ TextureOut Assemble(const TextureText& t, const cv::Mat1f& height_mm, cv::Mat pi
              "picture = \"picture.png\"\nheight_map = \"height.png\"\n" +
              "height_scale_mm = " + Mm(t.height_scale_mm) + "\n" +
              "relief_mm = " + Mm(t.relief_mm) + "\n";
+  out.sound_trim_db = t.sound_trim_db;
+  out.sound_trim_why = t.sound_trim_why;
   out.toml_tail = "\n[probe]\nwidth_mm = " + Mm(t.probe_width_mm) +
                   "\npenetration_mm = " + Mm(t.probe_penetration_mm) + "\nstyle = \"" +
                   t.probe_style + "\"\n" + extra_tail;
@@ -255,7 +259,14 @@ TextureOut BubbleWrap(const Canvas& c) {
                    .relief_mm = 0.8,
                    .probe_width_mm = 1.0,
                    .probe_penetration_mm = 0.02,
-                   .probe_style = "rub"},
+                   .probe_style = "rub",
+                   // Measured with population_levels: the strokes under the pop force match the
+                   // other textures, the firmer ones pop bubbles and stand ~3 LU over them.
+                   .sound_trim_db = -1.0,
+                   .sound_trim_why = "# Firm strokes pop bubbles, which the calibration grid "
+                                     "(below the pop force) leaves out:\n# the texture is lowered "
+                                     "after the per-stroke matching so its median visitor stroke "
+                                     "matches\n# the others' (population_levels).\n"},
                   h, Render(h, albedo, look, rng), bubbles);
 }
 

@@ -28,6 +28,8 @@ struct TextureOut {
   cv::Mat picture;
   std::string toml;       // texture.toml up to the [gains] table...
   std::string toml_tail;  // ...and after it: the gains are calibrated once the files exist
+  double sound_trim_db = 0.0;  // [gains] sound_trim_db (surface/texture_file.h), 0: not written
+  std::string sound_trim_why;  // its comment line in texture.toml
 };
 
 TextureOut BubbleWrap(const Canvas& c);

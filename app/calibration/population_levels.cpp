@@ -3,12 +3,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "kiosk/data_dirs.h"
+#include "surface/image_surface.h"
 #include "surface/texture_file.h"
 
 namespace sas::kiosk {
+namespace {
+
+std::string StrokeDescription(const VisitorStroke& stroke) {
+  const PenStroke& pen = stroke.pen;
+  const double length_mm = std::hypot((pen.x1 - pen.x0) * kScreenWidthPx,
+                                      (pen.y1 - pen.y0) * kScreenHeightPx) *
+                           surface::DisplayGeometry{}.pixel_pitch_mm();
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %.0f mm/s, pressure %.2f, tilt %.0f°, %.2f s",
+                stroke.name.c_str(), length_mm / pen.duration_s, pen.pressure, pen.tilt_deg,
+                pen.duration_s);
+  return text;
+}
+
+}  // namespace
 
 std::vector<std::string> KioskTexturePaths(const std::string& textures) {
   std::vector<std::string> paths;
@@ -45,7 +62,9 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
   row.sound_median = Percentile(sound, 0.5);
   row.sound_p5 = Percentile(sound, 0.05);
   row.sound_p95 = Percentile(sound, 0.95);
-  row.sound_max = *std::max_element(sound.begin(), sound.end());
+  const auto loudest = std::max_element(sound.begin(), sound.end());
+  row.sound_max = *loudest;
+  row.loudest_stroke = StrokeDescription(strokes[static_cast<std::size_t>(loudest - sound.begin())]);
   row.haptic_median = Percentile(haptic, 0.5);
   row.haptic_p5 = Percentile(haptic, 0.05);
   row.haptic_p95 = Percentile(haptic, 0.95);

@@ -22,8 +22,6 @@ namespace {
 
 constexpr int kMaxCalibrationRenders = 4;
 constexpr double kCalibrationToleranceDb = 0.05;
-constexpr int kScreenWidthPx = 1920;  // the kiosk's screen (KioskEngineOptions default)
-constexpr int kScreenHeightPx = 1080;
 // Each stroke is short (kStrokeS, 0.4 s) and measured from kSettleS after touch-down: a
 // visitor's strokes last longer (the headless visit's 1.2 s), and over the whole of a short stroke
 // the landing click outweighs the sliding (wood: over 0.3 s strokes its level hardly grew with
@@ -215,8 +213,9 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   options.screen_height_px = kScreenHeightPx;
   options.virtual_clock = true;
   options.spoken_cues = false;
-  options.config.sound_gain_db =
-      measurement.global_sound_gain_db + gains.sound_gain_db - file.gains.sound_gain_db;
+  options.config.sound_gain_db = measurement.global_sound_gain_db + gains.sound_gain_db +
+                                 gains.sound_trim_db - file.gains.sound_gain_db -
+                                 file.gains.sound_trim_db;
   options.config.haptic_gain_db =
       measurement.global_haptic_gain_db + gains.haptic_gain_db - file.gains.haptic_gain_db;
   options.config.stroke_cap_lu = measurement.stroke_cap_lu;

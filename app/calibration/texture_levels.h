@@ -61,6 +61,10 @@ struct StrokeLevels {
 };
 
 // A stroke of the calibration, as visitors make them at the kiosk.
+// The screen the strokes are drawn on, in pixels (KioskEngineOptions' default).
+inline constexpr int kScreenWidthPx = 1920;
+inline constexpr int kScreenHeightPx = 1080;
+
 struct VisitorStroke {
   std::string name;  // e.g. "scrape medium"
   PenStroke pen;     // screen fractions on the kiosk's 1920 x 1080 screen

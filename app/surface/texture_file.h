@@ -37,6 +37,10 @@ namespace sas::surface {
 struct TextureGains {
   double sound_gain_db = 0.0;
   double haptic_gain_db = 0.0;
+  // Added to the sound after the per-stroke matching (levels/stroke_gain.h), which would undo a
+  // change of sound_gain_db: for what the calibration grid leaves out (bubble wrap's pops), so the
+  // texture's median visitor stroke still matches the others'. Optional in the file, 0 dB.
+  double sound_trim_db = 0.0;
 };
 
 // The texture's loudness (ch 1, LUFS) and vibration strength (ch 2, dB RMS) at its [gains] over a

@@ -75,8 +75,16 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   low_vibration_gain_ = std::clamp(finite_or(params.low_vibration_gain, 1.0), 0.0, 1.0);
   ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
   low_vibration_ = params.low_vibration;
-  sound_leveller_.Prepare(finite_or(params.sound_level_cap, 0.0), kLevellerWindowS,
-                          kLevellerAttackS, kLevellerReleaseS, kLevellerLandingS, sample_rate_hz);
+  sound_leveller_.Prepare(finite_or(params.sound_level_cap, 0.0),
+                          {.window_s = kLevellerWindowS,
+                           .attack_s = kLevellerAttackS,
+                           .release_s = kLevellerReleaseS,
+                           .landing_s = kLevellerLandingS,
+                           .burst_window_s = kBurstWindowS,
+                           .burst_attack_s = kBurstAttackS,
+                           .burst_release_s = kBurstReleaseS,
+                           .burst_over_db = kBurstOverCapDb},
+                          sample_rate_hz);
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
   const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
@@ -100,14 +108,18 @@ void OutputStage::Reset() {
   sound_leveller_.Reset();
 }
 
-void Leveller::Prepare(double cap, double window_s, double attack_s, double release_s,
-                       double landing_s, double fs) {
+void Leveller::Prepare(double cap, const Times& times, double fs) {
   fs = std::max(fs, 1.0);
-  landing_samples = static_cast<int>(std::clamp(landing_s * fs, 0.0, 1e9));
+  const auto step = [fs](double seconds) { return 1.0 - std::exp(-1.0 / (seconds * fs)); };
+  landing_samples = static_cast<int>(std::clamp(times.landing_s * fs, 0.0, 1e9));
   cap_square = cap > 0.0 && std::isfinite(cap) ? cap * cap : 0.0;
-  level_step = 1.0 - std::exp(-1.0 / (window_s * fs));
-  attack_step = 1.0 - std::exp(-1.0 / (attack_s * fs));
-  release_step = 1.0 - std::exp(-1.0 / (release_s * fs));
+  burst_cap_square = cap_square * std::pow(10.0, times.burst_over_db / 10.0);
+  level_step = step(times.window_s);
+  attack_step = step(times.attack_s);
+  release_step = step(times.release_s);
+  burst_step = step(times.burst_window_s);
+  burst_attack_step = step(times.burst_attack_s);
+  burst_release_step = step(times.burst_release_s);
   weighting = KWeighting(fs);
   Reset();
 }

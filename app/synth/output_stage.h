@@ -16,8 +16,11 @@
 // follows fast going down (kLevellerAttackS) and slowly back up (kLevellerReleaseS), so the level
 // of a loud stroke is brought towards the cap without pumping. When the pen lands for a new stroke
 // (NewStroke, from the scene) the gain lets go at the attack's pace: one stroke's level is not
-// carried into the next. Peaks are the soft limiter's and
-// the final safety stage's job.
+// carried into the next. A burst (a crack struck, a knot crossed: tens of milliseconds) is over
+// before that window has heard it, so a second detector with a short window (kBurstWindowS) holds
+// bursts to kBurstOverCapDb above the cap, with a gain that comes back as fast as the burst went
+// (kBurstReleaseS): a squeak or a crack still stands out of the stroke, it no longer blasts.
+// Peaks are the soft limiter's and the final safety stage's job.
 // Soft limiter: linear up to kKnee, then a tanh shoulder approaching 1: C¹, odd, |y| < 1 for
 // every finite input, so "exaggerated" gains never clip hard and never overflow.
 // Low-vibration trim: 1, or low_vibration_gain while the mode is on; a change ramps linearly over
@@ -61,16 +64,26 @@ struct Leveller {
   double level_square = 0.0;  // running mean square of the K-weighted input
   double gain = 1.0;
   double level_step = 0.0, attack_step = 0.0, release_step = 0.0;
+  double burst_cap_square = 0.0;  // cap_square raised by the burst allowance
+  double burst_square = 0.0;      // the same mean square over the short window
+  double burst_gain = 1.0;
+  double burst_step = 0.0, burst_attack_step = 0.0, burst_release_step = 0.0;
   bool landing = false;   // a new stroke: let go at the attack's pace (NewStroke)
   int landing_samples = 0;  // the landing's length in samples (Prepare)
   int landing_left = 0;     // samples of the current landing the detector still ignores
   std::array<Biquad, 2> weighting{};
 
-  void Prepare(double cap, double window_s, double attack_s, double release_s, double landing_s,
-               double fs);
+  // Times in seconds; burst_over_db is how far over the cap a burst may go.
+  struct Times {
+    double window_s, attack_s, release_s, landing_s;
+    double burst_window_s, burst_attack_s, burst_release_s, burst_over_db;
+  };
+  void Prepare(double cap, const Times& times, double fs);
   void Reset() {
     level_square = 0.0;
     gain = 1.0;
+    burst_square = 0.0;
+    burst_gain = 1.0;
     landing = false;
     landing_left = 0;
     for (auto& section : weighting) section.s1 = section.s2 = 0.0;
@@ -84,6 +97,7 @@ struct Leveller {
   // the slow release.
   void NewStroke() {
     level_square = 0.0;
+    burst_square = 0.0;
     landing = gain < 1.0;
     landing_left = landing_samples;
   }
@@ -94,6 +108,7 @@ struct Leveller {
       --landing_left;
     } else {
       level_square += level_step * (heard * heard - level_square);
+      burst_square += burst_step * (heard * heard - burst_square);
     }
     const double want = level_square > cap_square ? std::sqrt(cap_square / level_square) : 1.0;
     if (want < gain) {
@@ -103,7 +118,14 @@ struct Leveller {
       gain += (landing ? attack_step : release_step) * (want - gain);
       if (landing && gain > 0.999) landing = false;
     }
-    return y * gain;
+    // The burst detector hears the input after the slow gain, so the two do not both pull the
+    // same sustained excess down.
+    const double after_slow = burst_square * gain * gain;
+    const double burst_want =
+        after_slow > burst_cap_square ? std::sqrt(burst_cap_square / after_slow) : 1.0;
+    burst_gain += (burst_want < burst_gain ? burst_attack_step : burst_release_step) *
+                  (burst_want - burst_gain);
+    return y * gain * burst_gain;
   }
 };
 
@@ -120,6 +142,12 @@ class OutputStage {
   // of its ring). Shorter, wood's ring (still ~10 LU over the stroke 50 ms after landing) trips
   // it; longer, a short loud stroke plays that much longer before the leveller catches it.
   static constexpr double kLevellerLandingS = 0.075;
+  // The burst detector: a window of about one crack's ring, and an allowance that keeps a glass
+  // crack or a wood knot audibly over the stroke.
+  static constexpr double kBurstWindowS = 0.01;
+  static constexpr double kBurstAttackS = 0.001;
+  static constexpr double kBurstReleaseS = 0.05;
+  static constexpr double kBurstOverCapDb = 3.0;
 
   void Prepare(const OutputParams& params, double sample_rate_hz);
   void Reset();

@@ -125,7 +125,11 @@ Spread MeasureAll(LevelMeasurement measurement, int places, const char* label) {
     for (const auto& other : kTextures) {
       if (other != name) measurement.other_textures.push_back(TexturePath(other));
     }
-    levels.push_back(MeasureStrokeLevels(TexturePath(name), file.gains, measurement));
+    // The matching as the tables make it: a texture's trim (bubble wrap's, for the pops the grid
+    // leaves out) is a deliberate offset, judged over the visitor population instead.
+    sas::surface::TextureGains gains = file.gains;
+    gains.sound_trim_db = 0.0;
+    levels.push_back(MeasureStrokeLevels(TexturePath(name), gains, measurement));
     means.push_back(sas::kiosk::MeanOverPlaces(levels.back(), places));
   }
   Spread spread;

@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   std::map<std::string, std::map<std::string, std::string>> strokes;
   std::string idle_line;
   std::string pop_line;
+  std::map<std::string, std::map<std::string, std::string>> spreads;
   for (std::string line; std::getline(visit, line);) {
     std::istringstream in(line);
     std::string kind, name;
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
     if (kind == "stroke") strokes[name] = Fields(line);
     if (kind == "idle_reset") idle_line = line;
     if (kind == "pop") pop_line = line;
+    if (kind == "spread") spreads[name] = Fields(line);
   }
   const std::vector<std::string> textures = {"bubble_wrap", "broken_glass", "wooden_board",
                                              "cracked_ground"};
@@ -184,6 +186,18 @@ int main(int argc, char** argv) {
         Fail(std::string("pop: ") + e.what());
       }
     }
+  }
+  // The same strokes on the four textures sound alike: each style's loudness within 3 LU across
+  // them (the level matching, levels/stroke_gain.h).
+  for (const char* style : {"scrape", "rub", "roll"}) {
+    const auto found = spreads.find(style);
+    if (found == spreads.end() || found->second["loudness_lu"].empty()) {
+      Fail(std::string("no loudness spread for ") + style + " in visit.txt");
+      continue;
+    }
+    const double lu = std::stod(found->second["loudness_lu"]);
+    std::printf("%s: the same strokes on the textures within %.2f LU\n", style, lu);
+    if (!(lu <= 3.0)) Fail(std::string(style) + ": the textures' loudness spreads over 3 LU");
   }
   if (idle_line.find("voice_wiped=yes") == std::string::npos)
     Fail("idle reset did not wipe the voice");

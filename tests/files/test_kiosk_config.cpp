@@ -139,6 +139,12 @@ TEST_CASE("kiosk output parameters add configuration, texture and ambient gains 
   CHECK(p.low_vibration_gain == Approx(0.1));
   CHECK_FALSE(p.low_vibration);
   CHECK(sas::kiosk::KioskOutputParams(config, texture, 2.0, true).low_vibration);
+  // The texture's trim lowers its sound only (after the per-stroke matching: stroke_gain.h).
+  texture.sound_trim_db = -1.0;
+  const auto trimmed = sas::kiosk::KioskOutputParams(config, texture, 2.0);
+  CHECK(trimmed.sound_gain == Approx(std::pow(10.0, 16.0 / 20.0)));
+  CHECK(trimmed.haptic_gain == Approx(p.haptic_gain));
+  CHECK(trimmed.sound_level_cap == Approx(p.sound_level_cap));
 }
 
 TEST_CASE("switch, recording and pen keys are validated by type, choice and list length",

@@ -73,6 +73,42 @@ TEST_CASE("stroke leveller: a 2 ms click over the cap keeps most of its peak") {
   CHECK(20.0 * std::log10(peak / amplitude) > -3.0);
 }
 
+TEST_CASE("stroke leveller: a 30 ms burst far over the cap is held near the burst allowance") {
+  // A crack struck mid-stroke: 12 dB over the cap for 30 ms, too short for the 50 ms detector to
+  // hear in time. The same leveller without its burst detector is the baseline.
+  const double cap = std::pow(10.0, -30.0 / 20.0);
+  const double soft = std::sqrt(2.0) * cap * std::pow(10.0, -6.0 / 20.0);
+  const double burst = std::sqrt(2.0) * cap * std::pow(10.0, 12.0 / 20.0);
+  const auto play = [&](double burst_over_db) {
+    sas::synth::Leveller leveller;
+    leveller.Prepare(cap,
+                     {.window_s = OutputStage::kLevellerWindowS,
+                      .attack_s = OutputStage::kLevellerAttackS,
+                      .release_s = OutputStage::kLevellerReleaseS,
+                      .landing_s = OutputStage::kLevellerLandingS,
+                      .burst_window_s = OutputStage::kBurstWindowS,
+                      .burst_attack_s = OutputStage::kBurstAttackS,
+                      .burst_release_s = OutputStage::kBurstReleaseS,
+                      .burst_over_db = burst_over_db},
+                     kFs);
+    const auto sine = [&](double amplitude, double seconds) {
+      std::vector<float> out(static_cast<std::size_t>(seconds * kFs));
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = static_cast<float>(leveller.Apply(
+            amplitude * std::sin(2.0 * kPi * 700.0 * static_cast<double>(i) / kFs)));
+      }
+      return out;
+    };
+    sine(soft, 0.2);
+    const std::vector<float> loud = sine(burst, 0.03);
+    return RmsDb(loud, 0, loud.size()) + 30.0;  // dB over the cap
+  };
+  const double without = play(200.0), with = play(OutputStage::kBurstOverCapDb);
+  CHECK(without > 8.0);
+  CHECK(with < OutputStage::kBurstOverCapDb + 3.0);
+  CHECK(with > 0.0);  // it still stands out of the stroke
+}
+
 TEST_CASE("stroke leveller: its K-weighting at 48 kHz is BS.1770's coefficient table") {
   const auto k = sas::synth::KWeighting(48000.0);
   CHECK(k[0].b0 == Approx(1.53512485958697).margin(1e-8));
