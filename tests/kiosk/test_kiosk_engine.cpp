@@ -7,8 +7,10 @@
 #include <fstream>
 #include <vector>
 
+#include "files/material_file.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
+#include "sas/version.h"
 #include "support/smaps.h"
 #include "support/temp_dir.h"
 #include "support/true_peak.h"
@@ -281,8 +283,25 @@ TEST_CASE(
 TEST_CASE(
     "engine: nothing reaches either output above its ceiling, whatever the source - cue "
     "files of 1e30 and NaN, the staff sweep in low-vibration mode, the test tone, the "
-    "loudest strokes at the largest gains",
+    "loudest strokes at the largest gains on the loudest material the loader accepts",
     "[kiosk][safety]") {
+  // The wooden board's material with its first mode made as loud and long as the loader lets a
+  // material be: light, undamped, full gain, ringing above -6 dBFS for just under the 2 s bound.
+  sas::test::TempDir materials;
+  {
+    std::ifstream in(std::string(sas::kSourceDir) + "/textures/materials/wood.toml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string mode = "{ frequency_hz = 323, decay_s = 0.0984, mass_kg = 0.417, gain = 0.53 }";
+    const auto at = text.find(mode);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, mode.size(), "{ frequency_hz = 323, decay_s = 0.8, mass_kg = 0.001, gain = 1.0 }");
+    const auto loud = sas::kiosk::ParseMaterial(text, "wood.toml", "wood");  // accepted...
+    const double ring = sas::kiosk::RingDownSeconds(loud.params);
+    INFO("ring-down " << ring << " s");
+    REQUIRE(ring > 1.5);  // ...and near the bound
+    REQUIRE(ring <= sas::kiosk::kRingDownMaxSeconds);
+    materials.Write("wood.toml", text);
+  }
   sas::test::TempDir cues;
   // Hostile cue files where the kiosk looks for the texture names.
   std::vector<float> huge(48000, 1e30f), nan(48000, std::nanf(""));
@@ -293,12 +312,20 @@ TEST_CASE(
   }
   KioskEngineOptions options = Options();
   options.cues_dir = cues.path();
+  options.materials_dir = materials.path().string();
   options.config.sound_gain_db = 40.0;  // every gain at its largest accepted value
   options.config.haptic_gain_db = 40.0;
   options.config.sound_ceiling_db = -6.0;
   options.config.haptic_ceiling_db = -20.0;
   options.config.low_vibration_db = 12.0;
   KioskEngine engine(options);
+  bool loud_wood = false;  // the board plays the loud material
+  for (const auto& texture : engine.textures()) {
+    if (texture.key == "wooden_board") {
+      loud_wood = texture.material.params.resonator.modes[0].mass_kg == 0.001;
+    }
+  }
+  REQUIRE(loud_wood);
   engine.SetAudioRunning(true);
   const double speaker = std::pow(10.0, -6.0 / 20.0);
   double transducer = std::pow(10.0, -20.0 / 20.0);
