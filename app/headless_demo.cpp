@@ -154,14 +154,110 @@ class Visit {
   std::map<std::string, std::pair<double, double>> levels_;
 };
 
+// The visit's strokes: every style on every texture, three times each (kDirections).
+struct StrokeStyle {
+  const char* name;
+  double tilt_deg;
+  std::optional<synth::ProbeStyle> style;
+};
+constexpr StrokeStyle kStyles[] = {{"scrape", 0.0, synth::ProbeStyle::kScrape},
+                                   {"rub", 55.0, synth::ProbeStyle::kRub},
+                                   {"roll", 0.0, synth::ProbeStyle::kRoll}};
+// A stroke along the screen, then two crossing it at its middle, rising and falling at 35°. One
+// straight line is not a texture's typical stroke (along the wooden board's grain a stroke barely
+// catches, ~15 dB under one across it), and the visit compares the textures, not one line on each.
+struct StrokeDirection {
+  const char* suffix;
+  double angle_deg;  // the crossing strokes' angle, 600 px long; 0: the stroke along
+};
+constexpr StrokeDirection kDirections[] = {{"", 0.0}, {"_rising", 35.0}, {"_falling", -35.0}};
+
+// Each texture chosen by its token, then stroked in every style and direction; visit.txt lines.
+std::string StrokeEveryStyle(Visit& visit, const HeadlessOptions& options) {
+  std::string report;
+  const auto& textures = visit.engine().textures();
+  for (std::size_t t = 0; t < textures.size(); ++t) {
+    visit.Token(static_cast<int>(t));  // a token on switch t: name cue, cross-fade
+    visit.Run(0.6);
+    visit.SavePlain(textures[t].key);
+    int row = 0;
+    for (const auto& style : kStyles) {
+      for (const auto& direction : kDirections) {
+        // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
+        // each style is heard on intact bubbles; popping comes next.
+        kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
+        if (direction.angle_deg != 0.0) {
+          const double angle = direction.angle_deg * kPi / 180.0;
+          const double half_x = 300.0 * std::cos(angle) / options.width_px;
+          const double half_y = 300.0 * std::sin(angle) / options.height_px;
+          const double cx = 0.5 * (stroke.x0 + stroke.x1), cy = 0.5 * (stroke.y0 + stroke.y1);
+          stroke.x0 = cx - half_x;
+          stroke.y0 = cy + half_y;
+          stroke.x1 = cx + half_x;
+          stroke.y1 = cy - half_y;
+        }
+        stroke.tilt_deg = style.tilt_deg;
+        stroke.style = style.style;
+        stroke.hover_s = 0.04;  // the hand comes in moving (the per-stroke gain knows its speed)
+        report += visit.DoStroke(textures[t].key + "_" + style.name + direction.suffix, stroke);
+      }
+      ++row;
+    }
+  }
+  return report;
+}
+
+// The same strokes on every texture: how far apart their levels are (levels/stroke_gain.h), each
+// texture's level the power mean of a style's strokes. Printed; returns the visit.txt lines.
+std::string PrintSpreads(Visit& visit, std::FILE* out) {
+  std::string report;
+  const auto& textures = visit.engine().textures();
+  for (const auto& style : kStyles) {
+    double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+    std::string each;
+    for (const auto& texture : textures) {
+      double power[2] = {0.0, 0.0};
+      int found = 0;
+      for (const auto& direction : kDirections) {
+        const auto it = visit.levels().find(texture.key + "_" + style.name + direction.suffix);
+        if (it == visit.levels().end()) continue;
+        power[0] += std::pow(10.0, it->second.first / 10.0);
+        power[1] += std::pow(10.0, it->second.second / 10.0);
+        ++found;
+      }
+      if (found == 0) continue;
+      const double level[2] = {10.0 * std::log10(power[0] / found),
+                               10.0 * std::log10(power[1] / found)};
+      char text[96];
+      std::snprintf(text, sizeof text, "%s%s %.1f/%.1f", each.empty() ? "" : ", ",
+                    texture.key.c_str(), level[0], level[1]);
+      each += text;
+      for (int c = 0; c < 2; ++c) {
+        lo[c] = std::min(lo[c], level[c]);
+        hi[c] = std::max(hi[c], level[c]);
+      }
+    }
+    std::fprintf(out,
+                 "  the same %s strokes on the %zu textures: loudness within %.1f LU, "
+                 "vibration within %.1f dB (LUFS/dB RMS: %s)\n",
+                 style.name, textures.size(), hi[0] - lo[0], hi[1] - lo[1], each.c_str());
+    char line[128];
+    std::snprintf(line, sizeof line, "spread %s loudness_lu=%.2f vibration_db=%.2f\n", style.name,
+                  hi[0] - lo[0], hi[1] - lo[1]);
+    report += line;
+  }
+  return report;
+}
+
 }  // namespace
 
 // The level matching judged as the tests judge it (calibration/population_levels.h): the visitor
 // population played on the textures this visit loaded, at the kiosk's default gains (~15 s).
 static void PrintPopulation(std::FILE* out, const kiosk::KioskEngine& engine, bool quick) {
   if (quick) {
-    std::fprintf(out, "  visitor population: left out of the quick visit "
-                      "(docs/population-levels.md has its figures)\n");
+    std::fprintf(out,
+                 "  visitor population: left out of the quick visit "
+                 "(docs/population-levels.md has its figures)\n");
     return;
   }
   std::vector<std::string> paths;
@@ -217,6 +313,43 @@ static void Skipped(std::FILE* out, std::string* report, const std::string& what
   *report += "skipped " + what + "\n";
 }
 
+// Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).
+static std::string PopBubble(Visit& visit, const HeadlessOptions& options, std::FILE* out) {
+  std::string report;
+  const auto& textures = visit.engine().textures();
+  int bubble_texture = -1;
+  for (std::size_t t = 0; t < textures.size(); ++t) {
+    if (textures[t].loaded.bubbles) bubble_texture = static_cast<int>(t);
+  }
+  if (bubble_texture < 0) Skipped(out, &report, "the bubble pop (no bubble wrap loaded)");
+  if (bubble_texture >= 0) {
+    visit.Token(bubble_texture);
+    visit.Run(0.6);
+    visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_intact");
+    const auto* state = visit.engine().bubbles();
+    // The bubble nearest the screen's centre, in screen pixels.
+    double best = 1e18, bx = 0.0, by = 0.0;
+    for (const auto& [fx, fy] : state->centres()) {
+      double sx = 0.0, sy = 0.0;
+      visit.engine().FieldToScreen(fx, fy, &sx, &sy);
+      const double d = std::hypot(sx - options.width_px / 2.0, sy - options.height_px / 2.0);
+      if (d < best) {
+        best = d;
+        bx = sx;
+        by = sy;
+      }
+    }
+    const double fx0 = bx / options.width_px, fy0 = by / options.height_px;
+    report +=
+        visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 0.0, 1.0, 0.0, {}}, {}, 0.3);
+    report += "pop popped=" + std::to_string(visit.engine().popped_bubbles()) +
+              " x=" + std::to_string(static_cast<int>(bx)) +
+              " y=" + std::to_string(static_cast<int>(by)) + "\n";
+    visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_popped");
+  }
+  return report;
+}
+
 void AddHeadlessOptions(CLI::App& app, HeadlessOptions& options) {
   app.add_option("--out", options.out_dir,
                  "folder for the visit's WAVs, PNGs and visit.txt (default sketch-a-scratch-demo)")
@@ -246,123 +379,13 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     for (const auto& failure : visit.engine().texture_failures()) {
       Skipped(out, &report, "texture " + failure);
     }
-    const struct {
-      const char* name;
-      double tilt_deg;
-      std::optional<synth::ProbeStyle> style;
-    } styles[] = {{"scrape", 0.0, synth::ProbeStyle::kScrape},
-                  {"rub", 55.0, synth::ProbeStyle::kRub},
-                  {"roll", 0.0, synth::ProbeStyle::kRoll}};
-    // Each style three times on every texture: a stroke along the screen, then two crossing it
-    // at its middle, rising and falling at 35°. One straight line is not a texture's typical
-    // stroke (along the wooden board's grain a stroke barely catches, ~15 dB under one across it),
-    // and the comparison below is of the textures, not of one line on each.
-    const struct {
-      const char* suffix;
-      double angle_deg;  // the crossing strokes' angle, 600 px long; none: the stroke along
-    } directions[] = {{"", 0.0}, {"_rising", 35.0}, {"_falling", -35.0}};
-    const auto& textures = visit.engine().textures();
-    for (std::size_t t = 0; t < textures.size(); ++t) {
-      visit.Token(static_cast<int>(t));  // a token on switch t: name cue, cross-fade
-      visit.Run(0.6);
-      visit.SavePlain(textures[t].key);
-      int row = 0;
-      for (const auto& style : styles) {
-        for (const auto& direction : directions) {
-          // 0.55 pressure: 1.1 N on the synth, 2.2 N on a bubble (below its 2.5 N pop force) so
-          // each style is heard on intact bubbles; popping comes next.
-          kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
-          if (direction.angle_deg != 0.0) {
-            const double angle = direction.angle_deg * kPi / 180.0;
-            const double half_x = 300.0 * std::cos(angle) / options.width_px;
-            const double half_y = 300.0 * std::sin(angle) / options.height_px;
-            const double cx = 0.5 * (stroke.x0 + stroke.x1), cy = 0.5 * (stroke.y0 + stroke.y1);
-            stroke.x0 = cx - half_x;
-            stroke.y0 = cy + half_y;
-            stroke.x1 = cx + half_x;
-            stroke.y1 = cy - half_y;
-          }
-          stroke.tilt_deg = style.tilt_deg;
-          stroke.style = style.style;
-          stroke.hover_s = 0.04;  // the hand comes in moving (the per-stroke gain knows its speed)
-          report += visit.DoStroke(textures[t].key + "_" + style.name + direction.suffix, stroke);
-        }
-        ++row;
-      }
-    }
-    // The same strokes on every texture: how far apart their levels are (levels/stroke_gain.h),
-    // each texture's level the power mean of a style's three strokes.
+    report += StrokeEveryStyle(visit, options);
     if (!options.quiet) {
-      for (const auto& style : styles) {
-        double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
-        std::string each;
-        for (const auto& texture : textures) {
-          double power[2] = {0.0, 0.0};
-          int found = 0;
-          for (const auto& direction : directions) {
-            const auto it =
-                visit.levels().find(texture.key + "_" + style.name + direction.suffix);
-            if (it == visit.levels().end()) continue;
-            power[0] += std::pow(10.0, it->second.first / 10.0);
-            power[1] += std::pow(10.0, it->second.second / 10.0);
-            ++found;
-          }
-          if (found == 0) continue;
-          const double level[2] = {10.0 * std::log10(power[0] / found),
-                                   10.0 * std::log10(power[1] / found)};
-          char text[96];
-          std::snprintf(text, sizeof text, "%s%s %.1f/%.1f", each.empty() ? "" : ", ",
-                        texture.key.c_str(), level[0], level[1]);
-          each += text;
-          for (int c = 0; c < 2; ++c) {
-            lo[c] = std::min(lo[c], level[c]);
-            hi[c] = std::max(hi[c], level[c]);
-          }
-        }
-        std::fprintf(out,
-                     "  the same %s strokes on the %zu textures: loudness within %.1f LU, "
-                     "vibration within %.1f dB (LUFS/dB RMS: %s)\n",
-                     style.name, textures.size(), hi[0] - lo[0], hi[1] - lo[1], each.c_str());
-        char line[128];
-        std::snprintf(line, sizeof line, "spread %s loudness_lu=%.2f vibration_db=%.2f\n",
-                      style.name, hi[0] - lo[0], hi[1] - lo[1]);
-        report += line;
-      }
+      report += PrintSpreads(visit, out);
       PrintPopulation(out, visit.engine(), options.quick);
     }
-    // Bubble wrap again: a firm press on one bubble pops it (a burst of sound, a flat patch).
-    {
-      int bubble_texture = -1;
-      for (std::size_t t = 0; t < textures.size(); ++t) {
-        if (textures[t].loaded.bubbles) bubble_texture = static_cast<int>(t);
-      }
-      if (bubble_texture < 0) Skipped(out, &report, "the bubble pop (no bubble wrap loaded)");
-      if (bubble_texture >= 0) {
-        visit.Token(bubble_texture);
-        visit.Run(0.6);
-        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_intact");
-        const auto* state = visit.engine().bubbles();
-        // The bubble nearest the screen's centre, in screen pixels.
-        double best = 1e18, bx = 0.0, by = 0.0;
-        for (const auto& [fx, fy] : state->centres()) {
-          double sx = 0.0, sy = 0.0;
-          visit.engine().FieldToScreen(fx, fy, &sx, &sy);
-          const double d = std::hypot(sx - options.width_px / 2.0, sy - options.height_px / 2.0);
-          if (d < best) {
-            best = d;
-            bx = sx;
-            by = sy;
-          }
-        }
-        const double fx0 = bx / options.width_px, fy0 = by / options.height_px;
-        report += visit.DoStroke("bubble_wrap_pop", {fx0, fy0, fx0 + 0.002, fy0, 0.0, 1.0, 0.0, {}},
-                                 {}, 0.3);
-        report += "pop popped=" + std::to_string(visit.engine().popped_bubbles()) +
-                  " x=" + std::to_string(static_cast<int>(bx)) +
-                  " y=" + std::to_string(static_cast<int>(by)) + "\n";
-        visit.SavePlain(textures[static_cast<std::size_t>(bubble_texture)].key + "_popped");
-      }
-    }
+    report += PopBubble(visit, options, out);
+    const auto& textures = visit.engine().textures();
 
     // A token switch in the middle of a stroke: the sound cross-fades, the picture too. With all
     // four textures, from the third to the second; it needs two.
