@@ -297,13 +297,8 @@ static void PrintPopulation(std::FILE* out, const kiosk::KioskEngine& engine, bo
                  r.haptic_median - targets.mean_haptic, style("scrape"), style("rub"),
                  style("roll"));
   }
-  const auto holds = [](bool ok) { return ok ? "holds" : "DOES NOT HOLD"; };
-  std::fprintf(out,
-               "    targets: medians within %.0f LU: %s; vibration medians within %.1f dB: %s; no "
-               "stroke over %.0f LU above its median: %s; felt on every style: %s\n",
-               kiosk::kSoundSpreadLu, holds(targets.sound), kiosk::kHapticSpreadDb,
-               holds(targets.haptic), kiosk::kLoudestOverMedianLu, holds(targets.loudest),
-               holds(targets.felt));
+  std::fprintf(out, "    targets: %s\n",
+               kiosk::DescribeTargets(targets, defaults.haptic_ceiling_db).c_str());
 }
 
 // A step of the visit that needs a texture which did not load: said on the console and in

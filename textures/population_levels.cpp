@@ -25,10 +25,6 @@
 
 namespace {
 
-std::string HoldsText(bool ok) {
-  return ok ? "holds" : "does not hold";
-}
-
 // The report: how the population was played, one table row per texture, and the targets.
 std::string LevelsMarkdown(const std::vector<sas::kiosk::PopulationLevels>& rows, int count,
                            unsigned seed, double duration_scale,
@@ -73,12 +69,7 @@ std::string LevelsMarkdown(const std::vector<sas::kiosk::PopulationLevels>& rows
   }
   md << "\nThe loudest stroke on each texture:\n\n";
   for (const auto& r : rows) md << "- " << r.name << ": " << r.loudest_stroke << "\n";
-  md << "\nTargets: median loudness within ±1 LU of the mean of the four: **" << HoldsText(targets.sound)
-     << "**; median transducer level within ±1.5 dB: **" << HoldsText(targets.haptic)
-     << "**; no stroke more than 10 LU over its "
-     << "texture's median: **" << HoldsText(targets.loudest)
-     << "**; every style's median transducer level within 15 dB of the transducer ceiling ("
-     << defaults.haptic_ceiling_db << " dBFS): **" << HoldsText(targets.felt) << "**.\n";
+  md << "\nTargets: " << sas::kiosk::DescribeTargets(targets, defaults.haptic_ceiling_db) << ".\n";
   return md.str();
 }
 
@@ -106,8 +97,9 @@ std::string ReadmeBlock(const std::vector<sas::kiosk::PopulationLevels>& rows, i
   }
   md << "\nThe aims: medians within ±" << sas::kiosk::kSoundSpreadLu << " LU and ±"
      << sas::kiosk::kHapticSpreadDb << " dB of the mean, no stroke over "
-     << sas::kiosk::kLoudestOverMedianLu << " LU above its texture's median: "
-     << (targets.all() ? "all met" : "**not all met**") << ".\n";
+     << sas::kiosk::kLoudestOverMedianLu
+     << " LU above its texture's median: " << (targets.all() ? "all met" : "**not all met**")
+     << ".\n";
   return md.str();
 }
 

@@ -15,9 +15,9 @@ namespace {
 
 std::string StrokeDescription(const VisitorStroke& stroke) {
   const PenStroke& pen = stroke.pen;
-  const double length_mm = std::hypot((pen.x1 - pen.x0) * kScreenWidthPx,
-                                      (pen.y1 - pen.y0) * kScreenHeightPx) *
-                           surface::DisplayGeometry{}.pixel_pitch_mm();
+  const double length_mm =
+      std::hypot((pen.x1 - pen.x0) * kScreenWidthPx, (pen.y1 - pen.y0) * kScreenHeightPx) *
+      surface::DisplayGeometry{}.pixel_pitch_mm();
   char text[160];
   std::snprintf(text, sizeof text, "%s %.0f mm/s, pressure %.2f, tilt %.0f°, %.2f s",
                 stroke.name.c_str(), length_mm / pen.duration_s, pen.pressure, pen.tilt_deg,
@@ -64,7 +64,8 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
   row.sound_p95 = Percentile(sound, 0.95);
   const auto loudest = std::max_element(sound.begin(), sound.end());
   row.sound_max = *loudest;
-  row.loudest_stroke = StrokeDescription(strokes[static_cast<std::size_t>(loudest - sound.begin())]);
+  row.loudest_stroke =
+      StrokeDescription(strokes[static_cast<std::size_t>(loudest - sound.begin())]);
   row.haptic_median = Percentile(haptic, 0.5);
   row.haptic_p5 = Percentile(haptic, 0.05);
   row.haptic_p95 = Percentile(haptic, 0.95);
@@ -72,6 +73,20 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
     row.per_style[style] = {Percentile(v.first, 0.5), Percentile(v.second, 0.5)};
   }
   return row;
+}
+
+std::string DescribeTargets(const PopulationTargets& targets, double haptic_ceiling_db) {
+  const auto holds = [](bool ok) { return ok ? "holds" : "does not hold"; };
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "median loudness within ±%.0f LU of the mean of the textures: %s; median "
+                "transducer level within ±%.1f dB: %s; no stroke more than %.0f LU over its "
+                "texture's median: %s; every style's median transducer level within %.0f dB of the "
+                "transducer ceiling (%.0f dBFS): %s",
+                kSoundSpreadLu, holds(targets.sound), kHapticSpreadDb, holds(targets.haptic),
+                kLoudestOverMedianLu, holds(targets.loudest), kFeltBelowCeilingDb,
+                haptic_ceiling_db, holds(targets.felt));
+  return text;
 }
 
 PopulationTargets CheckPopulationTargets(const std::vector<PopulationLevels>& textures,
@@ -82,7 +97,8 @@ PopulationTargets CheckPopulationTargets(const std::vector<PopulationLevels>& te
     targets.mean_haptic += r.haptic_median / static_cast<double>(textures.size());
   }
   for (const auto& r : textures) {
-    targets.sound = targets.sound && std::fabs(r.sound_median - targets.mean_sound) <= kSoundSpreadLu;
+    targets.sound =
+        targets.sound && std::fabs(r.sound_median - targets.mean_sound) <= kSoundSpreadLu;
     targets.haptic =
         targets.haptic && std::fabs(r.haptic_median - targets.mean_haptic) <= kHapticSpreadDb;
     targets.loudest = targets.loudest && r.sound_max - r.sound_median <= kLoudestOverMedianLu;

@@ -54,5 +54,8 @@ struct PopulationTargets {
 };
 PopulationTargets CheckPopulationTargets(const std::vector<PopulationLevels>& textures,
                                          double haptic_ceiling_db);
+// The four targets in words, each with "holds" or "does not hold", joined by "; ": the one
+// sentence the document and the headless visit both print.
+std::string DescribeTargets(const PopulationTargets& targets, double haptic_ceiling_db);
 
 }  // namespace sas::kiosk
