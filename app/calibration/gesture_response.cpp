@@ -159,8 +159,12 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
                              double fs_hz) {
   const double width_mm = surface.field->width() * surface.field->pitch_m() * 1e3;
   const double height_mm = surface.field->height() * surface.field->pitch_m() * 1e3;
+  // The relief alone: no friction (nor its noise) and no micro-roughness.
+  ResponseSurface relief = surface;
+  relief.material.friction.enabled = false;
+  relief.material.roughness.enabled = false;
   StrokeResponse mean;
-  mean.sound_db = mean.haptic_db = 0.0;
+  mean.sound_db = mean.haptic_db = mean.relief_db = 0.0;
   places = std::max(places, 1);
   for (int p = 0; p < places; ++p) {
     // Places spread over the middle of the surface, directions turning by 70° from one to the
@@ -175,6 +179,9 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
     Spectrum(span.sound, fs_hz, &one);
     mean.sound_db += PowerDb(MeanSquare(span.sound)) / places;
     mean.haptic_db += PowerDb(MeanSquare(span.haptic)) / places;
+    const Span relief_span =
+        PlayStroke(relief, stroke, cx - 0.5 * kPathMm * dx, cy - 0.5 * kPathMm * dy, dx, dy, fs_hz);
+    mean.relief_db += PowerDb(MeanSquare(relief_span.sound)) / places;
     mean.centroid_hz += one.centroid_hz / places;
     for (std::size_t b = 0; b < mean.band_db.size(); ++b)
       mean.band_db[b] += one.band_db[b] / places;
@@ -210,9 +217,9 @@ int ResponseRelationCount() {
   return styles * pressures * 3 + styles * speeds + speeds * pressures * styles * (styles - 1) / 2;
 }
 
-std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
-                                               const std::vector<ResponseCell>& grid,
-                                               const ResponseLimits& limits) {
+ResponseCheck CheckResponseGrid(const std::string& surface_name,
+                                const std::vector<ResponseCell>& grid,
+                                const ResponseLimits& limits) {
   const auto at = [&](synth::ProbeStyle style, double speed,
                       double pressure) -> const StrokeResponse* {
     for (const ResponseCell& c : grid) {
@@ -224,12 +231,12 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
     return nullptr;
   };
   const auto name = [](synth::ProbeStyle style) { return synth::ProbeStyleName(style).data(); };
-  std::vector<ResponseFailure> failures;
-  char text[256];
+  ResponseCheck check;
+  char text[400];
   char key[160];
   const auto fail = [&](const char* relation, const char* style, const char* condition) {
     std::snprintf(key, sizeof key, "%s/%s/%s/%s", surface_name.c_str(), relation, style, condition);
-    failures.push_back({key, text});
+    check.failures.push_back({key, text});
   };
   char condition[32];
   const double slow = kResponseSpeedsMmS.front(), fast = kResponseSpeedsMmS.back();
@@ -271,14 +278,31 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
       const StrokeResponse* a = at(style, speed, light);
       const StrokeResponse* b = at(style, speed, firm);
       if (a == nullptr || b == nullptr) continue;
-      if (b->sound_db - a->sound_db < limits.pressure_sound_db) {
-        std::snprintf(text, sizeof text,
-                      "%s, %s, %.0f mm/s: pressure %.1f -> %.1f raises the sound by %.1f dB, "
-                      "needs %.1f",
-                      surface_name.c_str(), name(style), speed, light, firm,
-                      b->sound_db - a->sound_db, limits.pressure_sound_db);
+      const double rise = b->sound_db - a->sound_db;
+      if (rise < limits.pressure_sound_db) {
         std::snprintf(condition, sizeof condition, "%.0fmm/s", speed);
-        fail("pressure-sound", name(style), condition);
+        const bool sliding_noise = a->relief_db <= a->sound_db - limits.sliding_noise_margin_db &&
+                                   b->relief_db <= b->sound_db - limits.sliding_noise_margin_db &&
+                                   rise >= limits.sliding_noise_min_rise_db;
+        if (sliding_noise) {
+          std::snprintf(text, sizeof text,
+                        "%s, %s, %.0f mm/s: pressure %.1f -> %.1f raises the sound by %.1f dB "
+                        "(%.1f -> %.1f dB); the relief alone plays %.1f / %.1f dB, %.0f / %.0f dB "
+                        "under the stroke: sliding noise, whose level the load hardly sets",
+                        surface_name.c_str(), name(style), speed, light, firm, rise, a->sound_db,
+                        b->sound_db, a->relief_db, b->relief_db, a->sound_db - a->relief_db,
+                        b->sound_db - b->relief_db);
+          std::snprintf(key, sizeof key, "%s/pressure-sound/%s/%s", surface_name.c_str(),
+                        name(style), condition);
+          check.exemptions.push_back({key, text});
+        } else {
+          std::snprintf(text, sizeof text,
+                        "%s, %s, %.0f mm/s: pressure %.1f -> %.1f raises the sound by %.1f dB, "
+                        "needs %.1f (the relief alone: %.1f / %.1f dB)",
+                        surface_name.c_str(), name(style), speed, light, firm, rise,
+                        limits.pressure_sound_db, a->relief_db, b->relief_db);
+          fail("pressure-sound", name(style), condition);
+        }
       }
     }
   }
@@ -304,7 +328,7 @@ std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
       }
     }
   }
-  return failures;
+  return check;
 }
 
 }  // namespace sas::kiosk

@@ -54,6 +54,9 @@ struct StrokeResponse {
   double centroid_hz = 0.0;   // power-weighted mean frequency of channel 1, 20 Hz .. 20 kHz
   // Channel 1's band levels (dB) relative to its total level: the spectrum's shape alone.
   std::array<double, kThirdOctaveBands> band_db{};
+  // Channel 1's RMS for the same stroke with the relief alone (friction and the material's
+  // micro-roughness off): how much of the sound the felt profile itself makes.
+  double relief_db = -300.0;
 };
 
 inline constexpr double kRestS = 0.15;
@@ -84,25 +87,42 @@ std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface, in
 // One failed relation of the grid: `key` names it ("wooden board/speed-centroid/roll/p0.8"),
 // `text` says it with figures ("wooden board, roll, p 0.8: speed 30 -> 300 mm/s moves the centroid
 // 568 -> 653 Hz (x1.15), needs x1.30").
+//
+// Where pressure does not raise the sound, the physics may say it should not: when the relief
+// alone plays at least sliding_noise_margin_db under the stroke at both pressures, what is heard
+// is the sliding contact's own noise (the probe bridges the relief or does not reach it), and the
+// level of that roughness noise is set by the surfaces' roughness, the sliding speed and the
+// bodies' dynamics, not by a light load (Ben Abdelounis, Le Bot, Perret-Liaudet & Zahouani, "An
+// experimental study on roughness noise of dry rough flat surfaces", Wear 268, 2010; Le Bot &
+// Bou Chakra, Tribology Letters 37, 2010: the level follows the nominal contact area, not the
+// load). Such a relation is reported as exempt, with its figures, as long as the firmer stroke is
+// not quieter by more than sliding_noise_min_rise_db; a quieter firm stroke is a failure whatever
+// the noise.
 struct ResponseLimits {
   double speed_sound_db = 6.0;
   double speed_centroid_ratio = 1.3;
   double speed_haptic_db = 0.0;  // "rises": more than this
   double pressure_sound_db = 3.0;
   double style_distance_db = 3.0;
+  double sliding_noise_margin_db = 20.0;
+  double sliding_noise_min_rise_db = -1.0;
 };
 struct ResponseFailure {
   std::string key;
   std::string text;
 };
+struct ResponseCheck {
+  std::vector<ResponseFailure> failures;
+  std::vector<ResponseFailure> exemptions;  // pressure relations the sliding noise explains
+};
 // Every relation of the grid on one surface: speed 30 -> 300 mm/s raises the sound level by
 // speed_sound_db, the centroid by speed_centroid_ratio and the vibration (per style and pressure);
-// pressure 0.2 -> 0.8 raises the sound by pressure_sound_db (per style and speed); every two
-// styles' band shapes differ by style_distance_db (per speed and pressure). Returns the ones that
-// fail.
-std::vector<ResponseFailure> CheckResponseGrid(const std::string& surface_name,
-                                               const std::vector<ResponseCell>& grid,
-                                               const ResponseLimits& limits = {});
+// pressure 0.2 -> 0.8 raises the sound by pressure_sound_db (per style and speed), or is exempt
+// (above); every two styles' band shapes differ by style_distance_db (per speed and pressure).
+// Returns the ones that fail and the exempt ones.
+ResponseCheck CheckResponseGrid(const std::string& surface_name,
+                                const std::vector<ResponseCell>& grid,
+                                const ResponseLimits& limits = {});
 // How many relations CheckResponseGrid checks on one surface.
 int ResponseRelationCount();
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,6 @@ using sas::synth::ProbeStyle;
 const std::set<std::string>& KnownOpen() {
   static const std::set<std::string> keys = {
       "bubble wrap/speed-centroid/rub/p0.8",
-      "bubble wrap/pressure-sound/rub/30mm/s",
-      "bubble wrap/pressure-sound/rub/100mm/s",
-      "bubble wrap/pressure-sound/rub/300mm/s",
       "bubble wrap/style-spectra/rub-roll/300mm/s,p0.2",
       "broken glass/speed-centroid/scrape/p0.2",
       "broken glass/speed-centroid/scrape/p0.8",
@@ -38,16 +36,12 @@ const std::set<std::string>& KnownOpen() {
       "wooden board/speed-centroid/roll/p0.8",
       "wooden board/style-spectra/scrape-rub/30mm/s,p0.2",
       "wooden board/style-spectra/scrape-rub/30mm/s,p0.8",
-      "cracked ground/pressure-sound/rub/300mm/s",
       "cracked ground/style-spectra/scrape-rub/30mm/s,p0.2",
       "cracked ground/style-spectra/scrape-rub/30mm/s,p0.8",
-      "voice/pressure-sound/scrape/100mm/s",
+      "voice/speed-sound/scrape/p0.8",
       "voice/pressure-sound/scrape/300mm/s",
+      "voice/speed-centroid/rub/p0.8",
       "voice/pressure-sound/rub/30mm/s",
-      "voice/pressure-sound/rub/100mm/s",
-      "voice/pressure-sound/rub/300mm/s",
-      "voice/speed-centroid/roll/p0.2",
-      "voice/speed-centroid/roll/p0.8",
   };
   return keys;
 }
@@ -65,6 +59,7 @@ std::vector<ResponseCell> GoodGrid() {
         cell.response.sound_db =
             -60.0 + 4.0 * static_cast<double>(s) + 4.0 * static_cast<double>(p);
         cell.response.haptic_db = cell.response.sound_db;
+        cell.response.relief_db = cell.response.sound_db;  // the relief is what is heard
         cell.response.centroid_hz = 500.0 * (1.0 + 0.25 * static_cast<double>(s));
         for (std::size_t b = 0; b < cell.response.band_db.size(); ++b) {
           // Each style tilts its spectrum its own way: 0, +0.6, -0.6 dB per band.
@@ -86,7 +81,8 @@ TEST_CASE(
     "one that a grid breaks",
     "[kiosk][gesture]") {
   std::vector<ResponseCell> grid = GoodGrid();
-  CHECK(CheckResponseGrid("test", grid).empty());
+  CHECK(CheckResponseGrid("test", grid).failures.empty());
+  CHECK(CheckResponseGrid("test", grid).exemptions.empty());
   // Break one relation of each kind.
   for (auto& c : grid) {
     if (c.stroke.style == ProbeStyle::kRub && c.stroke.speed_mm_s == 300.0 &&
@@ -103,7 +99,7 @@ TEST_CASE(
     }
   }
   std::set<std::string> keys;
-  for (const auto& f : CheckResponseGrid("test", grid)) keys.insert(f.key);
+  for (const auto& f : CheckResponseGrid("test", grid).failures) keys.insert(f.key);
   CHECK(keys == std::set<std::string>{"test/speed-centroid/rub/p0.2",
                                       "test/pressure-sound/roll/100mm/s",
                                       "test/speed-haptic/scrape/p0.8"});
@@ -116,10 +112,50 @@ TEST_CASE(
     }
   }
   int style_failures = 0;
-  for (const auto& f : CheckResponseGrid("test", grid)) {
+  for (const auto& f : CheckResponseGrid("test", grid).failures) {
     if (f.key.find("style-spectra/scrape-roll/") != std::string::npos) ++style_failures;
   }
   CHECK(style_failures == 6);  // every speed and pressure
+}
+
+TEST_CASE(
+    "gesture response: a pressure relation is exempt only where the relief alone is far under "
+    "the stroke at both pressures and the firm stroke is not quieter",
+    "[kiosk][gesture]") {
+  std::vector<ResponseCell> grid = GoodGrid();
+  // Every stroke's relief alone 30 dB under it: sliding noise everywhere, but the relations hold,
+  // so nothing is exempt.
+  for (auto& c : grid) c.response.relief_db = c.response.sound_db - 30.0;
+  CHECK(CheckResponseGrid("test", grid).exemptions.empty());
+  const auto cell = [&](ProbeStyle style, double speed, double pressure) -> ResponseCell& {
+    for (auto& c : grid) {
+      if (c.stroke.style == style && c.stroke.speed_mm_s == speed && c.stroke.pressure == pressure)
+        return c;
+    }
+    throw std::logic_error("no such cell");
+  };
+  // The firm rub at 100 mm/s only 0.5 dB over the light one, both sliding noise: exempt.
+  ResponseCell& light = cell(ProbeStyle::kRub, 100.0, 0.2);
+  ResponseCell& firm = cell(ProbeStyle::kRub, 100.0, 0.8);
+  firm.response.sound_db = light.response.sound_db + 0.5;
+  firm.response.relief_db = firm.response.sound_db - 30.0;
+  auto check = CheckResponseGrid("test", grid);
+  CHECK(check.failures.empty());
+  REQUIRE(check.exemptions.size() == 1);
+  CHECK(check.exemptions[0].key == "test/pressure-sound/rub/100mm/s");
+  // The relief of the firm stroke within 20 dB of it: the relief is heard, the relation fails.
+  firm.response.relief_db = firm.response.sound_db - 15.0;
+  check = CheckResponseGrid("test", grid);
+  CHECK(check.exemptions.empty());
+  REQUIRE(check.failures.size() == 1);
+  CHECK(check.failures[0].key == "test/pressure-sound/rub/100mm/s");
+  // Sliding noise again, but the firm stroke 2 dB quieter than the light one: a failure.
+  firm.response.relief_db = firm.response.sound_db - 30.0;
+  firm.response.sound_db = light.response.sound_db - 2.0;
+  firm.response.relief_db = firm.response.sound_db - 30.0;
+  check = CheckResponseGrid("test", grid);
+  CHECK(check.exemptions.empty());
+  CHECK(check.failures.size() == 1);
 }
 
 TEST_CASE(
@@ -131,6 +167,7 @@ TEST_CASE(
       (std::filesystem::path(sas::kSourceDir) / "textures").string());
   REQUIRE(surfaces.size() == 5);
   int holding = 0;
+  int exempt = 0;
   for (const auto& surface : surfaces) {
     const std::vector<ResponseCell> grid = sas::kiosk::MeasureResponseGrid(surface);
     REQUIRE(grid.size() == 18);
@@ -141,14 +178,18 @@ TEST_CASE(
       CHECK(c.response.sound_db > -140.0);
       CHECK(c.response.centroid_hz > 20.0);
     }
-    const auto failures = CheckResponseGrid(surface.name, grid);
-    holding += sas::kiosk::ResponseRelationCount() - static_cast<int>(failures.size());
-    for (const auto& f : failures) {
+    const auto check = CheckResponseGrid(surface.name, grid);
+    holding += sas::kiosk::ResponseRelationCount() - static_cast<int>(check.failures.size());
+    for (const auto& f : check.failures) {
       INFO(f.text);
       CHECK(KnownOpen().count(f.key) == 1);
     }
+    for (const auto& f : check.exemptions) {
+      WARN("exempt: " << f.text);
+      ++exempt;
+    }
   }
-  WARN(holding << " of " << 5 * sas::kiosk::ResponseRelationCount()
-               << " relations hold; known open: " << KnownOpen().size());
+  WARN(holding << " of " << 5 * sas::kiosk::ResponseRelationCount() << " relations hold (" << exempt
+               << " of them exempt); known open: " << KnownOpen().size());
   CHECK(holding + static_cast<int>(KnownOpen().size()) >= 5 * sas::kiosk::ResponseRelationCount());
 }
