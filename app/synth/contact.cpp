@@ -146,8 +146,10 @@ struct NormalEval {
 };
 // `mu_over_h` = μ / h, `f0` = f(x0) (0 if x0 <= 0), `a` = μ C / (3h), `inv_x0`: 1 / x0 where the
 // powers may come from PowRatio (ForceNear), else 0.
-NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double mu_over_h,
-                       double f0, double a, double inv_x0) {
+// Inlined: as a call, its 24-byte result went through memory on the Newton chain.
+[[gnu::always_inline]] inline NormalEval NormalForce(const ImpactModel& m, double x0, double v0,
+                                                     double d, double mu_over_h, double f0,
+                                                     double a, double inv_x0) {
   const Secant s = PotentialSecant(m, x0, v0, d, f0, inv_x0);
   const double p = 1.0 + mu_over_h * d;
   NormalEval e;
