@@ -41,7 +41,40 @@ void Phis(double r, double* phi1, double* phi2) {
             x4 * ((c[6] + c[7] * x) + x2 * (c[8] + c[9] * x)) + x8 * (c[10] + c[11] * x);
     return;
   }
-  const double e = std::expm1(-r);
+  if (r < 1.0) {
+    // The same series for φ2 to n = 16 (the rest < 1e-17 relative for r < 1), and φ1 = 1 - r φ2:
+    // a saturating bristle (glass) lands here on most steps, and expm1 took twice exp's time.
+    constexpr double c[19] = {1.0,
+                              1.0,
+                              1.0 / 2.0,
+                              1.0 / 6.0,
+                              1.0 / 24.0,
+                              1.0 / 120.0,
+                              1.0 / 720.0,
+                              1.0 / 5040.0,
+                              1.0 / 40320.0,
+                              1.0 / 362880.0,
+                              1.0 / 3628800.0,
+                              1.0 / 39916800.0,
+                              1.0 / 479001600.0,
+                              1.0 / 6227020800.0,
+                              1.0 / 87178291200.0,
+                              1.0 / 1307674368000.0,
+                              1.0 / 20922789888000.0,
+                              1.0 / 355687428096000.0,
+                              1.0 / 6402373705728000.0};  // 1 / n!
+    const double x = -r, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x16 = x8 * x8;
+    // Coefficient of x^n: c[n + 2].
+    const double low = ((c[2] + c[3] * x) + x2 * (c[4] + c[5] * x)) +
+                       x4 * ((c[6] + c[7] * x) + x2 * (c[8] + c[9] * x));
+    const double high = ((c[10] + c[11] * x) + x2 * (c[12] + c[13] * x)) +
+                        x4 * ((c[14] + c[15] * x) + x2 * (c[16] + c[17] * x));
+    *phi2 = (low + x8 * high) + x16 * c[18];
+    *phi1 = 1.0 + x * *phi2;
+    return;
+  }
+  // e^-r <= 1/e: exp(-r) - 1 is as accurate as expm1 here (within an ulp of the result).
+  const double e = std::exp(-r) - 1.0;
   *phi1 = -e / r;
   *phi2 = (r + e) / (r * r);
 }
@@ -52,7 +85,20 @@ struct Secant {
   double dg = 0.0;
   double f1 = -1.0;  // k x1^α where the secant needed it (x1 > 0, not the midpoint expansion)
 };
-Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
+// k (x0 + d)^α for a step from x0 > 0 with f0 = k x0^α: by the binomial series where the caller
+// allows it (inv_x0 = 1 / x0 > 0, ImpactModel::has_pow_series) and d is small enough, else a pow.
+// Inlined: as a call it cost wood 3 % (its sqrt fast path had been inlined).
+[[gnu::always_inline]] inline double ForceNear(const ImpactModel& m, double x0, double d, double f0, double inv_x0) {
+  const double delta = d * inv_x0;
+  if (inv_x0 > 0.0 && std::fabs(delta) <= ImpactModel::kPowSeriesReach) {
+    return f0 * m.PowRatio(delta);
+  }
+  return m.k * m.PowAlpha(x0 + d);
+}
+
+// `f0`, `inv_x0`: as ForceNear's.
+Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d, double f0,
+                       double inv_x0) {
   const double x1 = x0 + d;
   Secant s;
   if (x0 <= 0.0 && x1 <= 0.0) return s;
@@ -61,9 +107,9 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
     // Midpoint expansion: the plain difference quotient cancels for tiny d.
     const double mid = x0 + 0.5 * d;
     const double inv_mid = 1.0 / mid;
-    const double d1 = m.k * m.PowAlpha(mid);     // first derivative of V: k x^α
-    const double d2 = a * d1 * inv_mid;          // second
-    const double d3 = (a - 1.0) * d2 * inv_mid;  // third
+    const double d1 = ForceNear(m, x0, 0.5 * d, f0, inv_x0);  // first derivative of V: k x^α
+    const double d2 = a * d1 * inv_mid;                       // second
+    const double d3 = (a - 1.0) * d2 * inv_mid;               // third
     s.g = d1 + d3 * d * d / 24.0;
     s.dg = 0.5 * d2 + d3 * d / 12.0;  // derivative of the expansion in d (x0 fixed)
     return s;
@@ -73,7 +119,7 @@ Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d) {
     s.dg = -s.g / d;
     return s;
   }
-  const double f1 = m.k * m.PowAlpha(x1);
+  const double f1 = ForceNear(m, x0, d, f0, inv_x0);
   const double inv_d = 1.0 / d;
   s.g = (f1 * x1 * m.inv_alpha_plus_one - v0) * inv_d;
   s.dg = (f1 - s.g) * inv_d;
@@ -98,10 +144,13 @@ struct NormalEval {
   double df = 0.0;
   double f1 = -1.0;  // k x1^α where the evaluation took it (x1 > 0), else -1
 };
-// `mu_over_h` = μ / h, `f0` = f(x0) (0 if x0 <= 0), `a` = μ C / (3h).
-NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, double mu_over_h,
-                       double f0, double a) {
-  const Secant s = PotentialSecant(m, x0, v0, d);
+// `mu_over_h` = μ / h, `f0` = f(x0) (0 if x0 <= 0), `a` = μ C / (3h), `inv_x0`: 1 / x0 where the
+// powers may come from PowRatio (ForceNear), else 0.
+// Inlined: as a call, its 24-byte result went through memory on the Newton chain.
+[[gnu::always_inline]] inline NormalEval NormalForce(const ImpactModel& m, double x0, double v0,
+                                                     double d, double mu_over_h, double f0,
+                                                     double a, double inv_x0) {
+  const Secant s = PotentialSecant(m, x0, v0, d, f0, inv_x0);
   const double p = 1.0 + mu_over_h * d;
   NormalEval e;
   if (p <= 0.0) return e;  // separating faster than 1/μ: Hunt–Crossley would pull; clamp to 0
@@ -109,7 +158,7 @@ NormalEval NormalForce(const ImpactModel& m, double x0, double v0, double d, dou
   double q = 1.0, dq = 0.0;
   if (a > 0.0) {
     // The secant's own k x1^α when it took one (one power per evaluation, not two).
-    const double f1 = x1 > 0.0 ? (s.f1 >= 0.0 ? s.f1 : m.k * m.PowAlpha(x1)) : 0.0;
+    const double f1 = x1 > 0.0 ? (s.f1 >= 0.0 ? s.f1 : ForceNear(m, x0, d, f0, inv_x0)) : 0.0;
     q = 1.0 - a * (f1 - f0);
     if (x1 > 0.0) e.f1 = f1;
     if (q < kMinQ) {
@@ -193,6 +242,7 @@ class DiscreteGradientSolve {
         v0_(m.Potential(x0)) {
     if (x0 > 0.0) {
       f0_ = m.Force(x0);
+      if (m.has_pow_series) inv_x0_ = 1.0 / x0;
       const double df0 = m.alpha * f0_ / x0;  // f'(x0)
       slope0_ = 0.5 * df0 + f0_ * m.mu / h + f0_ * a_ * df0;
     }
@@ -212,8 +262,9 @@ class DiscreteGradientSolve {
     }
     const double scale = std::max(std::fabs(x0_), std::fabs(c)) + 1e-300;
     double slope = 1.0;
-    d = SolveMonotone([&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_); },
-                      c, compliance_, d, scale, force, &slope);
+    d = SolveMonotone(
+        [&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_, inv_x0_); }, c,
+        compliance_, d, scale, force, &slope);
     // R(d) = d - c + C F(d) = 0: dd/dc = 1 / R', dF/dc = F' / R' = (R' - 1) / (C R').
     if (slope > 0.0) *dforce_dc = (slope - 1.0) / (compliance_ * slope);
     if (std::isfinite(d) && slope > 0.0) {
@@ -228,7 +279,7 @@ class DiscreteGradientSolve {
  private:
   const ImpactModel& m_;
   double x0_, compliance_, mu_over_h_, a_, v0_;
-  double f0_ = 0.0, slope0_ = 0.0;
+  double f0_ = 0.0, slope0_ = 0.0, inv_x0_ = 0.0;
   bool has_last_ = false;
   double last_c_ = 0.0, last_d_ = 0.0, last_slope_ = 1.0;
 };
@@ -453,6 +504,16 @@ void ImpactModel::Set(const ImpactParams& params) {
            : alpha == 1.5 ? Shape::kThreeHalves
            : alpha == 2.0 ? Shape::kTwo
                           : Shape::kOther;
+  double c = 1.0;
+  for (int n = 1; n <= 6; ++n) {
+    c *= (alpha - (n - 1)) / n;
+    binomial_[n - 1] = c;
+  }
+  // The first term left out bounds the rest (|C(α, n+1) / C(α, n)| < 1 past n = α, and the reach
+  // is small): keep it under 1e-17, a twentieth of an ulp of 1.
+  const double next = c * (alpha - 6.0) / 7.0;
+  has_pow_series = shape_ == Shape::kOther && alpha > 0.0 && alpha < 7.0 &&
+                   std::fabs(next) * std::pow(kPowSeriesReach, 7.0) <= 1e-17;
 }
 
 double ImpactModel::Potential(double x) const {
@@ -771,6 +832,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   const double f0_over_x0 = m.k * m.PowAlphaMinusOne(in.x0);  // k x0^(α-1)
   const double f0 = f0_over_x0 * in.x0;
   const double v0 = f0 * in.x0 * m.inv_alpha_plus_one;  // V(x0) = k x0^(α+1) / (α+1)
+  const double inv_x0 = m.has_pow_series ? 1.0 / in.x0 : 0.0;
   // Start: the normal problem linearised at d = 0 with the previous step's friction force.
   const double a = mu_h * compliance / 3.0;  // NormalForce's covariance correction
   const double c = in.free_dx + in.coupling * in.friction_guess_n;
@@ -781,7 +843,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
   double u_prev = 0.0, f_prev = 0.0;
   for (int iteration = 0; iteration < 6; ++iteration) {
     if (!(in.x0 + d > 0.0)) return false;  // opening: the general solve handles the clamp
-    const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h, f0, a);
+    const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h, f0, a, inv_x0);
     const double u = in.free_du + in.free_dx - d - probe_part * e.f;
     const BristleStep b = StepBristle(friction, in.z0, u, limits);
     const double f = FrictionStepForce(friction, in.z0, b, u, inv_h, in.noise_n);
