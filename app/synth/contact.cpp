@@ -88,7 +88,8 @@ struct Secant {
 // k (x0 + d)^α for a step from x0 > 0 with f0 = k x0^α: by the binomial series where the caller
 // allows it (inv_x0 = 1 / x0 > 0, ImpactModel::has_pow_series) and d is small enough, else a pow.
 // Inlined: as a call it cost wood 3 % (its sqrt fast path had been inlined).
-[[gnu::always_inline]] inline double ForceNear(const ImpactModel& m, double x0, double d, double f0, double inv_x0) {
+[[gnu::always_inline]] inline double ForceNear(const ImpactModel& m, double x0, double d, double f0,
+                                               double inv_x0) {
   const double delta = d * inv_x0;
   if (inv_x0 > 0.0 && std::fabs(delta) <= ImpactModel::kPowSeriesReach) {
     return f0 * m.PowRatio(delta);
