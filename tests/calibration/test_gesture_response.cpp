@@ -37,9 +37,9 @@ const std::set<std::string>& KnownOpen() {
       "cracked ground/style-spectra/scrape-rub/30mm/s,p0.2",
       "cracked ground/style-spectra/scrape-roll/300mm/s,p0.8",
       "voice/speed-sound/scrape/p0.8",
-      "voice/pressure-sound/scrape/300mm/s",
       "voice/speed-centroid/rub/p0.8",
       "voice/pressure-sound/rub/30mm/s",
+      "voice/pressure-sound/roll/100mm/s",
   };
   return keys;
 }
