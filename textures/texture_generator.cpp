@@ -131,7 +131,9 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  // An option where the folder belongs (--help, a typo) would otherwise become a folder of that
+  // name with four textures in it.
+  if (argc < 2 || argv[1][0] == '-') {
     std::fprintf(stderr, "usage: %s <out_dir> [--only <name>] [--size <w> <h>]\n", argv[0]);
     return 2;
   }
