@@ -44,6 +44,20 @@ const std::set<std::string>& KnownOpen() {
   return keys;
 }
 
+// The pressure relations exempt as sliding noise (CheckResponseGrid: the relief alone >= 20 dB
+// under the stroke at both pressures, the firm stroke not quieter by more than 1 dB), with their
+// figures in docs/gesture-response.md. Listed so that a change which turns more relations into
+// sliding noise is looked at, not silently accepted.
+const std::set<std::string>& KnownExempt() {
+  static const std::set<std::string> keys = {
+      "bubble wrap/pressure-sound/rub/30mm/s",
+      "bubble wrap/pressure-sound/rub/100mm/s",
+      "bubble wrap/pressure-sound/rub/300mm/s",
+      "cracked ground/pressure-sound/rub/300mm/s",
+  };
+  return keys;
+}
+
 // A grid whose every relation holds by construction: level +8 dB and centroid x1.5 from the slow
 // to the fast speed, +4 dB from light to firm, and three styles with clearly different spectra.
 std::vector<ResponseCell> GoodGrid() {
@@ -184,6 +198,7 @@ TEST_CASE(
     }
     for (const auto& f : check.exemptions) {
       WARN("exempt: " << f.text);
+      CHECK(KnownExempt().count(f.key) == 1);
       ++exempt;
     }
   }
