@@ -129,9 +129,8 @@ double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
 // Margin of the roll's bounds for BoxMean's rounding (~1e-13 m).
 constexpr double kBoxMeanSlack = 1e-9;  // m
 
-SurfaceReader::RollGeometry SurfaceReader::Roll(double x_m, double y_m, double width_m,
-                                                double ball_radius_m, double direction_x,
-                                                double direction_y) const {
+SurfaceReader::RollGeometry SurfaceReader::Roll(double width_m, double ball_radius_m,
+                                                double direction_x, double direction_y) const {
   RollGeometry g;
   g.r = std::max(ball_radius_m, 0.5 * width_m);
   g.half_count = static_cast<int>(std::clamp(g.r / field_.pitch_m, 1.0, 64.0));
@@ -139,6 +138,11 @@ SurfaceReader::RollGeometry SurfaceReader::Roll(double x_m, double y_m, double w
   const double norm = std::hypot(direction_x, direction_y);
   g.dx = norm > 0.0 ? direction_x / norm : 1.0;
   g.dy = norm > 0.0 ? direction_y / norm : 0.0;
+  return g;
+}
+
+double SurfaceReader::RollCeiling(double x_m, double y_m, double width_m,
+                                  const RollGeometry& g) const {
   // The ceiling is the highest point under the ball's track (its tiles), not the field's: on a
   // low or flat part of the field the scan stops after a point or two. (At least 0: BoxMean
   // reads 0 where it cannot average.)
@@ -148,8 +152,7 @@ SurfaceReader::RollGeometry SurfaceReader::Roll(double x_m, double y_m, double w
           ? CeilingOver(x_m - g.r * std::fabs(g.dx), x_m + g.r * std::fabs(g.dx),
                         y_m - g.r * std::fabs(g.dy), y_m + g.r * std::fabs(g.dy), half_px)
           : max_height_m_;
-  g.ceiling = std::max(local, 0.0) + kBoxMeanSlack;
-  return g;
+  return std::max(local, 0.0) + kBoxMeanSlack;
 }
 
 double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetration_m,
@@ -166,12 +169,13 @@ double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetr
     // the centre outwards and the scan stops at the first that cannot matter. Skipping them leaves
     // the maximum, hence the result, bit-identical (kBoxMeanSlack covers BoxMean's rounding, which
     // is ~1e-13 m), while a ball under a light touch reads a few points instead of up to 129.
-    const RollGeometry g = Roll(x_m, y_m, width_m, ball_radius_m, direction_x, direction_y);
+    const RollGeometry g = Roll(width_m, ball_radius_m, direction_x, direction_y);
+    const double ceiling = RollCeiling(x_m, y_m, width_m, g);
     h = -1e300;
     for (int k = 0; k <= g.half_count; ++k) {
       const double s = k * g.ds;
       const double lift = std::sqrt(std::max(g.r * g.r - s * s, 0.0)) - g.r;
-      if (g.ceiling + lift <= std::max(h, threshold)) break;
+      if (ceiling + lift <= std::max(h, threshold)) break;
       h = std::max(h, BoxMean(x_m + s * g.dx, y_m + s * g.dy, width_m) + lift);
       if (k > 0) h = std::max(h, BoxMean(x_m - s * g.dx, y_m - s * g.dy, width_m) + lift);
     }
@@ -196,7 +200,6 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
   // last time is read first, so the result is Felt's, bit for bit, from about one box mean a
   // sample instead of three or four.
   const double threshold = max_height_m_ - std::max(penetration_m, 0.0);
-  const RollGeometry g = Roll(x_m, y_m, width_m, ball_radius_m, direction_x, direction_y);
   RollTrack& t = roll_;
   if (!t.valid || t.width_m != width_m || t.radius_m != ball_radius_m ||
       t.direction_x != direction_x || t.direction_y != direction_y) {
@@ -206,6 +209,7 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
     t.radius_m = ball_radius_m;
     t.direction_x = direction_x;
     t.direction_y = direction_y;
+    t.geometry = Roll(width_m, ball_radius_m, direction_x, direction_y);
     for (double& v : t.value) v = std::numeric_limits<double>::infinity();
   } else {
     // The window's width in pixels along each axis (BoxMean: at least one, at most the field).
@@ -223,6 +227,8 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
   }
   t.x_m = x_m;
   t.y_m = y_m;
+  const RollGeometry& g = t.geometry;
+  const double ceiling = RollCeiling(x_m, y_m, width_m, g);
   // Point index: 0 the centre, 2k - 1 at +k·ds, 2k at -k·ds.
   const auto read = [&](int k, int index, double s) {
     const double v = index > 0 && index == 2 * k ? BoxMean(x_m - s * g.dx, y_m - s * g.dy, width_m)
@@ -244,7 +250,7 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
   for (int k = 0; k <= g.half_count; ++k) {
     const double s = k * g.ds;
     const double lift = lift_at(s);
-    if (g.ceiling + lift <= std::max(h, threshold)) break;
+    if (ceiling + lift <= std::max(h, threshold)) break;
     for (int index = k == 0 ? 0 : 2 * k - 1; index <= 2 * k; ++index) {
       if (index == first) continue;
       const double bound = t.value[index] + (t.drift - t.drift_at[index]) + kBoxMeanSlack;
