@@ -112,6 +112,12 @@ struct Scene::Impl {
     return reader.Felt(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
                        material.probe.ball_radius_m, gesture.direction_x, gesture.direction_y);
   }
+  // The same, bit for bit, from the reader's record of the last sample (RenderFrame only).
+  double FeltTracked(double x, double y) {
+    return reader.FeltTracked(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
+                              material.probe.ball_radius_m, gesture.direction_x,
+                              gesture.direction_y);
+  }
 
   double Uniform() {  // xorshift64*: uniform in [-1, 1)
     noise_state ^= noise_state >> 12;
@@ -340,7 +346,7 @@ struct Scene::Impl {
     y_m += step_y_m;
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
     if (probe.active) {
-      const double next = Felt(x_m, y_m) + RoughnessStep();
+      const double next = FeltTracked(x_m, y_m) + RoughnessStep();
       SampleDrive drive;
       drive.surface_begin_m = surface_m;
       drive.surface_end_m = next;

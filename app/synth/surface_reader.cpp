@@ -10,15 +10,22 @@ namespace sas::synth {
 void SurfaceReader::Prepare(const HeightFieldView& field) {
   field_ = field;
   max_height_m_ = 0.0;
+  height_range_m_ = 0.0;
+  roll_.valid = false;
   inv_pitch_ = field_.pitch_m > 0.0 ? 1.0 / field_.pitch_m : 0.0;
   if (field_.empty() || field_.summed_area == nullptr) {
     field_ = HeightFieldView{};
     return;
   }
   const std::size_t n = field_.size();
-  float highest = field_.height_m[0];
-  for (std::size_t i = 1; i < n; ++i) highest = std::max(highest, field_.height_m[i]);
+  float highest = field_.height_m[0], lowest = field_.height_m[0];
+  for (std::size_t i = 1; i < n; ++i) {
+    highest = std::max(highest, field_.height_m[i]);
+    lowest = std::min(lowest, field_.height_m[i]);
+  }
   max_height_m_ = static_cast<double>(highest);
+  height_range_m_ = static_cast<double>(highest) - static_cast<double>(lowest);
+  roll_ = RollTrack{};
   tiles_x_ = (field_.width + kTile - 1) / kTile;
   tiles_y_ = (field_.height + kTile - 1) / kTile;
   tile_max_.assign(static_cast<std::size_t>(tiles_x_) * static_cast<std::size_t>(tiles_y_),
@@ -119,6 +126,35 @@ double SurfaceReader::BoxMean(double x_m, double y_m, double width_m) const {
   return sum / area;
 }
 
+// Margin of the roll's bounds for BoxMean's rounding (~1e-13 m).
+constexpr double kBoxMeanSlack = 1e-9;  // m
+
+SurfaceReader::RollGeometry SurfaceReader::Roll(double width_m, double ball_radius_m,
+                                                double direction_x, double direction_y) const {
+  RollGeometry g;
+  g.r = std::max(ball_radius_m, 0.5 * width_m);
+  g.half_count = static_cast<int>(std::clamp(g.r / field_.pitch_m, 1.0, 64.0));
+  g.ds = g.r / g.half_count;
+  const double norm = std::hypot(direction_x, direction_y);
+  g.dx = norm > 0.0 ? direction_x / norm : 1.0;
+  g.dy = norm > 0.0 ? direction_y / norm : 0.0;
+  return g;
+}
+
+double SurfaceReader::RollCeiling(double x_m, double y_m, double width_m,
+                                  const RollGeometry& g) const {
+  // The ceiling is the highest point under the ball's track (its tiles), not the field's: on a
+  // low or flat part of the field the scan stops after a point or two. (At least 0: BoxMean
+  // reads 0 where it cannot average.)
+  const double half_px = 0.5 * std::max(width_m * inv_pitch_, 1.0);
+  const double local =
+      std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(g.r) && std::isfinite(half_px)
+          ? CeilingOver(x_m - g.r * std::fabs(g.dx), x_m + g.r * std::fabs(g.dx),
+                        y_m - g.r * std::fabs(g.dy), y_m + g.r * std::fabs(g.dy), half_px)
+          : max_height_m_;
+  return std::max(local, 0.0) + kBoxMeanSlack;
+}
+
 double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetration_m,
                            ProbeStyle style, double ball_radius_m, double direction_x,
                            double direction_y) const {
@@ -133,34 +169,100 @@ double SurfaceReader::Felt(double x_m, double y_m, double width_m, double penetr
     // the centre outwards and the scan stops at the first that cannot matter. Skipping them leaves
     // the maximum, hence the result, bit-identical (kBoxMeanSlack covers BoxMean's rounding, which
     // is ~1e-13 m), while a ball under a light touch reads a few points instead of up to 129.
-    constexpr double kBoxMeanSlack = 1e-9;  // m
-    const double r = std::max(ball_radius_m, 0.5 * width_m);
-    const int half_count = static_cast<int>(std::clamp(r / field_.pitch_m, 1.0, 64.0));
-    const double ds = r / half_count;
-    const double norm = std::hypot(direction_x, direction_y);
-    const double dx = norm > 0.0 ? direction_x / norm : 1.0;
-    const double dy = norm > 0.0 ? direction_y / norm : 0.0;
-    // The ceiling is the highest point under the ball's track (its tiles), not the field's: on a
-    // low or flat part of the field the scan stops after a point or two. (At least 0: BoxMean
-    // reads 0 where it cannot average.)
-    const double half_px = 0.5 * std::max(width_m * inv_pitch_, 1.0);
-    const double local =
-        std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(r) && std::isfinite(half_px)
-            ? CeilingOver(x_m - r * std::fabs(dx), x_m + r * std::fabs(dx), y_m - r * std::fabs(dy),
-                          y_m + r * std::fabs(dy), half_px)
-            : max_height_m_;
-    const double ceiling = std::max(local, 0.0) + kBoxMeanSlack;
+    const RollGeometry g = Roll(width_m, ball_radius_m, direction_x, direction_y);
+    const double ceiling = RollCeiling(x_m, y_m, width_m, g);
     h = -1e300;
-    for (int k = 0; k <= half_count; ++k) {
-      const double s = k * ds;
-      const double lift = std::sqrt(std::max(r * r - s * s, 0.0)) - r;
+    for (int k = 0; k <= g.half_count; ++k) {
+      const double s = k * g.ds;
+      const double lift = std::sqrt(std::max(g.r * g.r - s * s, 0.0)) - g.r;
       if (ceiling + lift <= std::max(h, threshold)) break;
-      h = std::max(h, BoxMean(x_m + s * dx, y_m + s * dy, width_m) + lift);
-      if (k > 0) h = std::max(h, BoxMean(x_m - s * dx, y_m - s * dy, width_m) + lift);
+      h = std::max(h, BoxMean(x_m + s * g.dx, y_m + s * g.dy, width_m) + lift);
+      if (k > 0) h = std::max(h, BoxMean(x_m - s * g.dx, y_m - s * g.dy, width_m) + lift);
     }
   } else {
     h = BoxMean(x_m, y_m, width_m);
   }
+  return std::max(h - threshold, 0.0);
+}
+
+double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double penetration_m,
+                                  ProbeStyle style, double ball_radius_m, double direction_x,
+                                  double direction_y) {
+  if (style != ProbeStyle::kRoll || field_.empty() || !std::isfinite(x_m) || !std::isfinite(y_m) ||
+      !std::isfinite(width_m) || !std::isfinite(ball_radius_m)) {
+    roll_.valid = false;
+    return Felt(x_m, y_m, width_m, penetration_m, style, ball_radius_m, direction_x, direction_y);
+  }
+  // Felt's scan, with one more reason to skip a point: a box mean over a window of width W moves
+  // by at most (highest - lowest) · travel / W when the window travels, so a point read at an
+  // earlier position (a few um back: far less than a pixel) is bounded by what it read plus the
+  // drift since. Only points that cannot reach the maximum are skipped, and the one that gave it
+  // last time is read first, so the result is Felt's, bit for bit, from about one box mean a
+  // sample instead of three or four.
+  const double threshold = max_height_m_ - std::max(penetration_m, 0.0);
+  RollTrack& t = roll_;
+  if (!t.valid || t.width_m != width_m || t.radius_m != ball_radius_m ||
+      t.direction_x != direction_x || t.direction_y != direction_y) {
+    t = RollTrack{};
+    t.valid = true;
+    t.width_m = width_m;
+    t.radius_m = ball_radius_m;
+    t.direction_x = direction_x;
+    t.direction_y = direction_y;
+    t.geometry = Roll(width_m, ball_radius_m, direction_x, direction_y);
+    for (double& v : t.value) v = std::numeric_limits<double>::infinity();
+  } else {
+    // The window's width in pixels along each axis (BoxMean: at least one, at most the field).
+    const double side = std::max(width_m * inv_pitch_, 1.0);
+    const double wx = std::min(side, static_cast<double>(field_.width));
+    const double wy = std::min(side, static_cast<double>(field_.height));
+    const double travel = std::fabs(x_m - t.x_m) * inv_pitch_ / wx +
+                          (field_.height > 1 ? std::fabs(y_m - t.y_m) * inv_pitch_ / wy : 0.0);
+    // (1 + 1e-9): the bound's own rounding.
+    t.drift += height_range_m_ * travel * (1.0 + 1e-9);
+    if (!std::isfinite(t.drift)) {
+      t.drift = 0.0;
+      for (double& v : t.value) v = std::numeric_limits<double>::infinity();
+    }
+  }
+  t.x_m = x_m;
+  t.y_m = y_m;
+  const RollGeometry& g = t.geometry;
+  const double ceiling = RollCeiling(x_m, y_m, width_m, g);
+  // Point index: 0 the centre, 2k - 1 at +k·ds, 2k at -k·ds.
+  const auto read = [&](int k, int index, double s) {
+    const double v = index > 0 && index == 2 * k ? BoxMean(x_m - s * g.dx, y_m - s * g.dy, width_m)
+                                                 : BoxMean(x_m + s * g.dx, y_m + s * g.dy, width_m);
+    t.value[index] = v;
+    t.drift_at[index] = t.drift;
+    return v;
+  };
+  const auto lift_at = [&](double s) { return std::sqrt(std::max(g.r * g.r - s * s, 0.0)) - g.r; };
+  double h = -1e300;
+  int best = -1;
+  const int first = t.best <= 2 * g.half_count ? t.best : -1;
+  if (first >= 0) {
+    const int k = (first + 1) / 2;
+    const double s = k * g.ds;
+    h = read(k, first, s) + lift_at(s);
+    best = first;
+  }
+  for (int k = 0; k <= g.half_count; ++k) {
+    const double s = k * g.ds;
+    const double lift = lift_at(s);
+    if (ceiling + lift <= std::max(h, threshold)) break;
+    for (int index = k == 0 ? 0 : 2 * k - 1; index <= 2 * k; ++index) {
+      if (index == first) continue;
+      const double bound = t.value[index] + (t.drift - t.drift_at[index]) + kBoxMeanSlack;
+      if (bound + lift <= std::max(h, threshold)) continue;
+      const double v = read(k, index, s) + lift;
+      if (v > h) {
+        h = v;
+        best = index;
+      }
+    }
+  }
+  t.best = best;
   return std::max(h - threshold, 0.0);
 }
 

@@ -30,6 +30,12 @@ class SurfaceReader {
   double Felt(double x_m, double y_m, double width_m, double penetration_m, ProbeStyle style,
               double ball_radius_m, double direction_x, double direction_y) const;
 
+  // The same value as Felt, bit for bit, for the audio thread's sample-by-sample walk: a rolling
+  // ball keeps the box means it read at the last position and skips the points that cannot reach
+  // the maximum now (see the .cpp). Not thread-safe (it updates that record).
+  double FeltTracked(double x_m, double y_m, double width_m, double penetration_m, ProbeStyle style,
+                     double ball_radius_m, double direction_x, double direction_y);
+
   static double FrictionShare(ProbeStyle style, double width_mm);
 
   double max_height_m() const { return max_height_m_; }
@@ -40,11 +46,39 @@ class SurfaceReader {
   // read, from the tile table (an upper bound of every BoxMean there, up to its rounding).
   double CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi, double half_px) const;
 
+  // A rolling ball's points and the bound on what they read (Felt's comment).
+  struct RollGeometry {
+    double r = 0.0, ds = 0.0, dx = 0.0, dy = 0.0;  // radius, point spacing, unit direction
+    int half_count = 0;                            // points k = 0 .. half_count on each side
+  };
+  RollGeometry Roll(double width_m, double ball_radius_m, double direction_x,
+                    double direction_y) const;
+  // Highest box mean along the track of a ball centred at (x_m, y_m), plus BoxMean's rounding.
+  double RollCeiling(double x_m, double y_m, double width_m, const RollGeometry& g) const;
+
+  // The roll's points along the ball: k = 0 .. half_count (<= 64) on each side of the centre.
+  static constexpr int kMaxRollPoints = 129;
+  // What FeltTracked knew at the last position of a rolling ball: each point's box mean when it
+  // was last read (+inf: not read) and the drift when it was, the drift being the most any box
+  // mean can have moved since (the field's height range times the travel over the window width).
+  struct RollTrack {
+    bool valid = false;
+    double x_m = 0.0, y_m = 0.0;  // the centre it was at
+    double width_m = 0.0, radius_m = 0.0, direction_x = 0.0, direction_y = 0.0;  // the inputs
+    RollGeometry geometry{};  // Roll's for them (hypot and divisions once, not every sample)
+    double drift = 0.0;
+    int best = -1;  // the point that gave the maximum there (-1: none)
+    double value[kMaxRollPoints] = {};
+    double drift_at[kMaxRollPoints] = {};
+  };
+
   static constexpr int kTile = 8;   // pixels per side of a tile of the ceiling table
   HeightFieldView field_{};
   std::vector<float> tile_max_;  // highest value of each tile, row-major
   int tiles_x_ = 0, tiles_y_ = 0;
   double max_height_m_ = 0.0;
+  double height_range_m_ = 0.0;  // highest minus lowest point of the field
+  RollTrack roll_{};
   double inv_pitch_ = 0.0;  // 1 / pitch (the per-sample lookups multiply)
 };
 
