@@ -33,13 +33,28 @@ work=$(mktemp -d /tmp/sas-kiosk-e2e-XXXXXX)
 xvfb_pid=""
 app_pid=""
 pacer_pid=""
+# stop_pid, and no LeakSanitizer exit scan for Mesa's and D-Bus's blocks (as the other Xvfb tests).
+. "$(dirname "${BASH_SOURCE[0]}")/xvfb_common.sh"
+# Every wait is bounded. The kiosk goes first, while its X server and audio reader are still there,
+# and must stop within 20 s of SIGTERM (systemd's stop does the same); the pacer and Xvfb get 3 s
+# and then SIGKILL. A bare `wait` on all three once sat until CTest's 240 s timeout after PASS in
+# the sanitizer suite, with nothing saying which one held it.
 cleanup() {
-  [ -n "$app_pid" ] && kill "$app_pid" 2>/dev/null
-  [ -n "$pacer_pid" ] && kill "$pacer_pid" 2>/dev/null
-  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
-  wait 2>/dev/null
+  local status=$?
+  if [ -n "$app_pid" ] && kill "$app_pid" 2>/dev/null; then
+    for _ in $(seq 200); do kill -0 "$app_pid" 2>/dev/null || break; sleep 0.1; done
+    if kill -0 "$app_pid" 2>/dev/null; then
+      echo "FAIL: the kiosk did not stop within 20 s of SIGTERM: $(ps -o stat=,wchan= -p "$app_pid")"
+      kill -9 "$app_pid" 2>/dev/null
+      status=1
+    fi
+    wait "$app_pid" 2>/dev/null
+  fi
+  [ -n "$pacer_pid" ] && stop_pid "$pacer_pid"
+  [ -n "$xvfb_pid" ] && stop_pid "$xvfb_pid"
   [ -n "${SAS_E2E_KEEP:-}" ] && cp "$work"/*.png "$work/app.log" "$SAS_E2E_KEEP"/ 2>/dev/null
   rm -rf "$work"
+  exit "$status"
 }
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; echo "--- app log"; grep -v 'jack server\|JackShm\|Cannot connect' "$work/app.log"; exit 1; }
