@@ -411,8 +411,10 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::ReportTextures(board, *engine);
 
   LiveDevices devices = OpenDevices(config, *engine, board, backends, width, height);
-  kiosk::KioskControl control(
-      *engine, {devices.output.get(), devices.pen.get(), &devices.switches, &board}, log);
+  kiosk::KioskControl control(*engine,
+                              {devices.output.get(), devices.pen.get(), &devices.switches, &board,
+                               engine->recorder_present() ? devices.input.get() : nullptr},
+                              log);
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   WatchDeviceThreads(watchdog, devices);
   watchdog.Ready("exploring");

@@ -88,6 +88,9 @@ std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHand
   if (!actions.empty()) LogSessionActions(*log_, *engine_, actions);
   devices_.output->Poll(now_ns);
   engine_->SetAudioRunning(devices_.output->Running());
+  if (devices_.input != nullptr) {
+    engine_->SetMicrophoneLive(now_ns, devices_.input->Delivering(now_ns));
+  }
   return actions;
 }
 

@@ -10,8 +10,8 @@
 // that went away with its tip down gets a synthesised tip-up (the sound stops, the stroke ends)
 // -> switch events (TokenSelector -> OnToken; record button) -> engine.Tick (session timers,
 // counters) -> audio Poll (lost device: silent, reopened with back-off) -> the engine is told
-// whether a callback runs. Session actions come back to the caller and are logged here, one
-// journal line per visible step.
+// whether a callback runs, and whether the microphone still delivers. Session actions come back to
+// the caller and are logged here, one journal line per visible step.
 
 #include <cstdint>
 #include <functional>
@@ -20,6 +20,7 @@
 
 #include "files/kiosk_config.h"
 #include "kiosk/kiosk_engine.h"
+#include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/device_status.h"
 #include "platform/input/switch_factory.h"
@@ -52,6 +53,7 @@ struct KioskDevices {
   platform::PenSource* pen = nullptr;                  // null: no libinput at all (mouse/touch)
   platform::SwitchInputs* switches = nullptr;          // required
   const platform::DeviceStatusBoard* board = nullptr;  // null: SIGUSR1's status names no device
+  platform::AudioInput* input = nullptr;  // null: no microphone to watch (none at start)
 };
 
 class KioskControl {

@@ -298,7 +298,7 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
         PlayCue(cues_.ForAction(action));
         break;
       case Kind::kStartRecording:
-        if (recorder_ == nullptr) {
+        if (!recorder_present()) {
           session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9,
                                        RecordingOutcome::kNoMicrophone);
         } else {
@@ -330,6 +330,17 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
       case Kind::kStaffPanel:
         break;  // the UI's business
     }
+  }
+}
+
+void KioskEngine::SetMicrophoneLive(std::int64_t now_ns, bool live) {
+  if (live == microphone_live_) return;
+  microphone_live_ = live;
+  if (!live && recording_) {
+    recording_ = false;
+    if (recorder_) recorder_->Wipe();
+    session_.OnRecordingFinished(static_cast<double>(now_ns) * 1e-9,
+                                 RecordingOutcome::kNoMicrophone);
   }
 }
 

@@ -126,6 +126,10 @@ class KioskEngine final {
   std::vector<SessionAction> Tick(std::int64_t now_ns);
   // The microphone's recorder, or null (no microphone: the record button says so).
   void SetRecorder(platform::VoiceRecorder* recorder) { recorder_ = recorder; }
+  // Whether the microphone delivers sound (platform::AudioInput::Delivering, once per loop pass).
+  // While it does not, the record button says there is no microphone; a recording in progress
+  // ends as if there were none (its take is wiped: half a take is not a voice).
+  void SetMicrophoneLive(std::int64_t now_ns, bool live);
   // False while no audio callback can run (device missing): pen strokes and cues are then not
   // queued (player.h), a switch waits until the device runs again. Call after each
   // AudioOutput::Poll.
@@ -185,7 +189,7 @@ class KioskEngine final {
   const surface::BubbleWrapState* bubbles() const;
   int popped_bubbles() const;
   float mic_level() const { return recorder_ ? recorder_->Level() : 0.0f; }
-  bool recorder_present() const { return recorder_ != nullptr; }
+  bool recorder_present() const { return recorder_ != nullptr && microphone_live_; }
   EngineAudioStats audio_stats() const;
   // The speaker's Leq over the last visit and the last hour (exposure_meter.h), updated by Tick.
   const ExposureMeter& exposure() const { return exposure_; }
@@ -258,6 +262,7 @@ class KioskEngine final {
   surface::ProfileSlots voice_;
   std::optional<surface::GrayImage> voice_image_;
   platform::VoiceRecorder* recorder_ = nullptr;
+  bool microphone_live_ = true;
   bool recording_ = false;
   bool low_vibration_ = false;
   StaffSettings staff_;

@@ -4,6 +4,9 @@
 
 #include <portaudio.h>
 
+#include <atomic>
+#include <cstdint>
+
 #include "platform/audio/audio_output.h"
 #include "platform/audio/voice_recorder.h"
 
@@ -21,6 +24,7 @@ int PortAudioOutputCallback(const void* input, void* output, unsigned long frame
 struct InputCallbackContext {
   VoiceRecorder* recorder = nullptr;
   int channels = 1;
+  std::atomic<std::uint64_t> callbacks{0};  // the control thread's sign that sound still comes
 };
 
 int PortAudioInputCallback(const void* input, void* output, unsigned long frames,

@@ -17,6 +17,7 @@ int PortAudioInputCallback(const void* input, void* /*output*/, unsigned long fr
                            const PaStreamCallbackTimeInfo* /*time*/,
                            PaStreamCallbackFlags /*flags*/, void* user) {
   auto* context = static_cast<InputCallbackContext*>(user);
+  context->callbacks.fetch_add(1, std::memory_order_relaxed);
   if (input != nullptr) {
     context->recorder->PushInterleaved(static_cast<const float*>(input), static_cast<int>(frames),
                                        context->channels);
@@ -54,9 +55,30 @@ class PortAudioInput final : public AudioInput {
   void Stop() override {
     stream_.Reset();
     session_.reset();
+    watch_.Reset();
   }
 
   VoiceRecorder& recorder() override { return recorder_; }
+
+  bool Delivering(std::int64_t now_ns) override {
+    if (!stream_) return false;
+    const bool live = watch_.Update(context_.callbacks.load(std::memory_order_relaxed), now_ns);
+    if (live != live_) {
+      live_ = live;
+      if (live) {
+        board_->AddReconnect("audio_in");
+        board_->Set("audio_in", DeviceState::kOk,
+                    "sound from '" + config_.device + "' again; recording possible", "portaudio");
+      } else {
+        board_->AddFailure("audio_in");
+        board_->Set("audio_in", DeviceState::kLost,
+                    "no sound from '" + config_.device +
+                        "' for 1 s (unplugged?); recording is off until it comes back",
+                    "portaudio");
+      }
+    }
+    return live;
+  }
 
  private:
   bool Open(std::string* error) {
@@ -96,6 +118,8 @@ class PortAudioInput final : public AudioInput {
   std::optional<PortAudioSession> session_;
   PortAudioStream stream_;
   detail::InputCallbackContext context_;
+  InputWatch watch_;
+  bool live_ = true;
 };
 
 }  // namespace
@@ -110,7 +134,24 @@ void FakeAudioInput::Feed(const float* mono, std::size_t count) {
   for (std::size_t i = 0; i < count; i += static_cast<std::size_t>(frames_per_buffer_)) {
     const std::size_t n = std::min(count - i, static_cast<std::size_t>(frames_per_buffer_));
     recorder_.Push(mono + i, static_cast<int>(n));
+    ++blocks_;
   }
+}
+
+bool InputWatch::Update(std::uint64_t callbacks, std::int64_t now_ns) {
+  const bool loop_stood_still = started_ && now_ns - called_ns_ > kLoopGapNs;
+  called_ns_ = now_ns;
+  if (!started_ || callbacks != callbacks_) {
+    started_ = true;
+    live_ = true;
+    callbacks_ = callbacks;
+    changed_ns_ = now_ns;
+  } else if (loop_stood_still) {
+    changed_ns_ = now_ns;  // judged from now on; a lost input stays lost
+  } else if (now_ns - changed_ns_ >= kStallNs) {
+    live_ = false;
+  }
+  return live_;
 }
 
 }  // namespace sas::platform

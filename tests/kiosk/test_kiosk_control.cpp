@@ -14,9 +14,11 @@
 #include <vector>
 
 #include "files/counters_file.h"
+#include "kiosk/device_configs.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
+#include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
 #include "platform/pen/pen_source.h"
 #include "support/temp_dir.h"
@@ -133,6 +135,89 @@ TEST_CASE(
   CHECK(engine.session().counters() != OnDisk(options.counters_path));
   CHECK(control.Shutdown());  // and the stop saves the rest
   CHECK(OnDisk(options.counters_path) == engine.session().counters());
+}
+
+TEST_CASE(
+    "control: a microphone that stops sending sound mid-recording ends the take as 'no "
+    "microphone' and turns recording off, and when its sound comes back recording works again",
+    "[kiosk]") {
+  kiosk::KioskEngineOptions options = VirtualClockOptions();
+  options.countdown_s = 0.5;
+  kiosk::KioskEngine engine(options);
+  platform::FakeAudioInput mic(kiosk::RecorderConfigFor(options.config));
+  REQUIRE(mic.Start());
+  engine.SetRecorder(&mic.recorder());
+  platform::OfflineAudioOutput output(engine.audio(), platform::AudioOutputConfig{});
+  REQUIRE(output.Start());
+  platform::SwitchInputs switches;
+  QuietLogger log;
+  kiosk::KioskControl control(engine, {&output, nullptr, &switches, nullptr, &mic}, log);
+  const auto on_pen = [](const platform::PenReading&) {};
+  std::vector<float> voice(480);  // 10 ms of a 200 Hz tone per loop pass
+  for (std::size_t i = 0; i < voice.size(); ++i) {
+    voice[i] = static_cast<float>(
+        0.3 * std::sin(2.0 * 3.14159265358979 * 200.0 * static_cast<double>(i) / 48000.0));
+  }
+  std::int64_t now = 1000 * kMs;
+  // Passes of 10 ms for `seconds`, the microphone feeding sound or not.
+  const auto run = [&](double seconds, bool feeding) {
+    for (int i = 0; i < static_cast<int>(seconds * 100.0); ++i) {
+      if (feeding) mic.Feed(voice.data(), voice.size());
+      control.Step(now, on_pen);
+      now += 10 * kMs;
+    }
+  };
+  const auto press_record = [&] {
+    engine.OnRecordButton(now, true);
+    run(0.05, true);
+    engine.OnRecordButton(now, false);
+  };
+  run(0.5, true);
+  REQUIRE(engine.recorder_present());
+  press_record();
+  run(1.0, true);  // the countdown, then recording
+  REQUIRE(engine.session().mode() == kiosk::SessionMode::kRecording);
+  const auto failed = engine.session().counters().failed_recordings;
+
+  run(0.9, false);  // pulled out: under a second of silence from the device is not yet a loss
+  CHECK(engine.session().mode() == kiosk::SessionMode::kRecording);
+  run(0.2, false);
+  CHECK(engine.session().mode() != kiosk::SessionMode::kRecording);
+  CHECK_FALSE(engine.recorder_present());
+  CHECK_FALSE(engine.has_voice());
+  CHECK(engine.session().counters().failed_recordings == failed + 1);
+  press_record();  // the button now says there is no microphone
+  run(1.0, false);
+  CHECK(engine.session().mode() != kiosk::SessionMode::kRecording);
+
+  run(0.1, true);  // plugged back in
+  CHECK(engine.recorder_present());
+  press_record();
+  run(1.0, true);
+  CHECK(engine.session().mode() == kiosk::SessionMode::kRecording);
+}
+
+TEST_CASE(
+    "microphone watch: a started input is lost after 1 s without a callback and back at the next "
+    "one, and a process that stood still does not lose it",
+    "[kiosk]") {
+  platform::InputWatch watch;
+  const std::int64_t ms = 1'000'000;
+  std::int64_t now = 5000 * ms;
+  CHECK(watch.Update(0, now));  // the start: delivering until shown otherwise
+  std::uint64_t count = 0;
+  for (int i = 0; i < 10; ++i) CHECK(watch.Update(++count, now += 100 * ms));
+  // No callback from here: still delivering at 0.9 s, lost at 1 s, and it stays lost.
+  for (int i = 0; i < 9; ++i) CHECK(watch.Update(count, now += 100 * ms));
+  CHECK_FALSE(watch.Update(count, now += 100 * ms));
+  CHECK_FALSE(watch.Update(count, now += 100 * ms));
+  CHECK_FALSE(watch.Update(count, now += 2000 * ms));  // a long pass does not bring it back
+  CHECK(watch.Update(++count, now += 100 * ms));       // the next callback does
+  // The whole process stopped for 5 s (no pass, no callback): not a loss once it runs again.
+  CHECK(watch.Update(count, now += 5000 * ms));
+  CHECK(watch.Update(++count, now += 10 * ms));
+  watch.Reset();  // a restart starts afresh, whatever the count
+  CHECK(watch.Update(count, now += 100 * ms));
 }
 
 TEST_CASE(
