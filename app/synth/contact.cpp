@@ -14,6 +14,27 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+// 1 / n! for the series of Phis.
+constexpr double kInverseFactorial[19] = {1.0,
+                                          1.0,
+                                          1.0 / 2.0,
+                                          1.0 / 6.0,
+                                          1.0 / 24.0,
+                                          1.0 / 120.0,
+                                          1.0 / 720.0,
+                                          1.0 / 5040.0,
+                                          1.0 / 40320.0,
+                                          1.0 / 362880.0,
+                                          1.0 / 3628800.0,
+                                          1.0 / 39916800.0,
+                                          1.0 / 479001600.0,
+                                          1.0 / 6227020800.0,
+                                          1.0 / 87178291200.0,
+                                          1.0 / 1307674368000.0,
+                                          1.0 / 20922789888000.0,
+                                          1.0 / 355687428096000.0,
+                                          1.0 / 6402373705728000.0};
+
 // φ1 = (1 - e^-r) / r and φ2 = (r - 1 + e^-r) / r², with their series where the closed forms
 // lose digits.
 void Phis(double r, double* phi1, double* phi2) {
@@ -22,18 +43,7 @@ void Phis(double r, double* phi1, double* phi2) {
     // r < 1/8, and a bristle sliding a fraction of z_ss per step (the usual case) needs no exp.
     // Estrin's scheme (pairs, then powers of x²) keeps the dependency chain short.
     const double x = -r, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
-    constexpr double c[12] = {1.0,
-                              1.0,
-                              1.0 / 2.0,
-                              1.0 / 6.0,
-                              1.0 / 24.0,
-                              1.0 / 120.0,
-                              1.0 / 720.0,
-                              1.0 / 5040.0,
-                              1.0 / 40320.0,
-                              1.0 / 362880.0,
-                              1.0 / 3628800.0,
-                              1.0 / 39916800.0};  // 1 / n!
+    const double* c = kInverseFactorial;
     // Coefficients of x^n: φ1 -> c[n + 1], φ2 -> c[n + 2].
     *phi1 = (c[1] + c[2] * x) + x2 * (c[3] + c[4] * x) +
             x4 * ((c[5] + c[6] * x) + x2 * (c[7] + c[8] * x)) + x8 * (c[9] + c[10] * x);
@@ -44,26 +54,8 @@ void Phis(double r, double* phi1, double* phi2) {
   if (r < 1.0) {
     // The same series for φ2 to n = 16 (the rest < 1e-17 relative for r < 1), and φ1 = 1 - r φ2:
     // a saturating bristle (glass) lands here on most steps, and expm1 took twice exp's time.
-    constexpr double c[19] = {1.0,
-                              1.0,
-                              1.0 / 2.0,
-                              1.0 / 6.0,
-                              1.0 / 24.0,
-                              1.0 / 120.0,
-                              1.0 / 720.0,
-                              1.0 / 5040.0,
-                              1.0 / 40320.0,
-                              1.0 / 362880.0,
-                              1.0 / 3628800.0,
-                              1.0 / 39916800.0,
-                              1.0 / 479001600.0,
-                              1.0 / 6227020800.0,
-                              1.0 / 87178291200.0,
-                              1.0 / 1307674368000.0,
-                              1.0 / 20922789888000.0,
-                              1.0 / 355687428096000.0,
-                              1.0 / 6402373705728000.0};  // 1 / n!
     const double x = -r, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x16 = x8 * x8;
+    const double* c = kInverseFactorial;
     // Coefficient of x^n: c[n + 2].
     const double low = ((c[2] + c[3] * x) + x2 * (c[4] + c[5] * x)) +
                        x4 * ((c[6] + c[7] * x) + x2 * (c[8] + c[9] * x));
