@@ -374,6 +374,10 @@ surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration
       static_cast<std::size_t>(image.samples_per_row));
   // Rows as bands (paper figure 3) so the image has the screen's shape.
   image.row_height_px = std::max(1, 1080 / std::max(1, rows));
+  // Speech is peaky: scaled to its single loudest sample, most of the take sits near mid-grey
+  // and a light stroke, which feels only the top of the relief, feels none of it. The loudest
+  // tenth clips to white and black instead, so the voice fills the picture and the relief.
+  image.level_quantile = 0.9;
   return image;
 }
 

@@ -2,6 +2,7 @@
 #include "surface/sound_image.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +17,29 @@ namespace {
 float PeakOf(std::span<const float> samples, std::size_t count) {
   float peak = 0.0f;
   for (std::size_t i = 0; i < count; ++i) peak = std::max(peak, std::fabs(samples[i]));
+  return peak;
+}
+
+// The |sample| below which `quantile` of the samples lie, from a histogram of |s| / peak (no
+// copy of the recording, which stays in the caller's memory only). 1: the peak itself.
+double LevelOf(std::span<const float> samples, std::size_t count, float peak, double quantile) {
+  if (quantile >= 1.0 || !(peak > 1e-9f)) return peak;
+  constexpr std::size_t kBins = 4096;  // the level to 1/4096 of the peak: finer than any screen
+  constexpr double kTop = static_cast<double>(kBins - 1);
+  std::array<std::size_t, kBins> histogram{};
+  for (std::size_t i = 0; i < count; ++i) {
+    const double bin = static_cast<double>(std::fabs(samples[i])) / peak * kTop;
+    ++histogram[std::min(static_cast<std::size_t>(bin), kBins - 1)];
+  }
+  const double wanted = std::ceil(quantile * static_cast<double>(count));
+  double below = 0.0;
+  for (std::size_t b = 0; b < kBins; ++b) {
+    below += static_cast<double>(histogram[b]);
+    // Bin b holds |s| / peak in [b, b + 1) / kTop: its upper edge is the level.
+    if (below >= wanted) {
+      return std::min(static_cast<double>(b + 1) / kTop, 1.0) * static_cast<double>(peak);
+    }
+  }
   return peak;
 }
 
@@ -68,7 +92,8 @@ GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& 
                        std::pmr::memory_resource* memory) {
   if (samples.empty()) throw std::invalid_argument("SoundToImage: empty recording");
   if (o.samples_per_row < 1 || o.row_length_px < 1 || o.row_height_px < 1 ||
-      o.row_length_px > 16384 || !(o.max_duration_s > 0.0) || !(o.sample_rate_hz > 0.0)) {
+      o.row_length_px > 16384 || !(o.max_duration_s > 0.0) || !(o.sample_rate_hz > 0.0) ||
+      !(o.level_quantile > 0.0 && o.level_quantile <= 1.0)) {
     throw std::invalid_argument("SoundToImage: options out of range");
   }
   const auto max_samples = static_cast<std::size_t>(o.max_duration_s * o.sample_rate_hz);
@@ -79,7 +104,8 @@ GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& 
     throw std::invalid_argument("SoundToImage: image would be taller than 16384 rows");
   }
   const float peak = PeakOf(samples, count);
-  const double scale = peak > 1e-9f ? 0.5 / peak : 0.0;  // silence: uniform mid-grey
+  const double level = LevelOf(samples, count, peak, o.level_quantile);
+  const double scale = level > 1e-9 ? 0.5 / level : 0.0;  // silence: uniform mid-grey
   GrayImage image{o.row_length_px, static_cast<int>(chunks) * o.row_height_px,
                   std::pmr::vector<float>(memory)};
   image.luminance.assign(

@@ -4,7 +4,8 @@
 // Sound -> image (paper figure 3): "the stacking of luminance-translated audio signals to produce
 // rows of pixels". A recording of up to 5 s is cut into consecutive chunks of `samples_per_row`
 // samples; each chunk becomes one row, its samples mapped to luminance 0.5 + 0.5 s / peak (silence
-// is mid-grey). The paper's transformations:
+// is mid-grey; `level_quantile` can map a lower level than the peak to white, clipping above it).
+// The paper's transformations:
 //   row length (temporal expansion): `row_length_px` pixels show `samples_per_row` samples, so
 //     expansion = row_length_px / samples_per_row (> 1 stretches time by interpolation, < 1
 //     compresses it by averaging);
@@ -43,6 +44,10 @@ struct SoundImageOptions {
   bool interlace = false;
   double max_duration_s = 5.0;  // longer recordings are cut (the kiosk records 5 s)
   double sample_rate_hz = 48000.0;
+  // The |sample| level that maps to white and black: the level below which this share of the
+  // samples lie. 1 is the peak (figure 3); below 1 the loudest samples clip and a peaky sound
+  // (speech) fills the image instead of sitting near mid-grey.
+  double level_quantile = 1.0;
 };
 
 // Throws std::invalid_argument for options out of range or an empty recording. The image's

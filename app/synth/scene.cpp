@@ -107,6 +107,7 @@ struct Scene::Impl {
   double rough_keep = 1.0, rough_in = 0.0, contact_step = 0.0;
   double noise_keep = 0.0, noise_in = 1.0;
   double rough_raw = 0.0, rough_c1 = 0.0, rough_felt = 0.0, noise_w = 0.0;
+  double noise_junction_step = 0.0, noise_junction = 0.0;
 
   double Felt(double x, double y) const {
     return reader.Felt(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
@@ -147,7 +148,8 @@ struct Scene::Impl {
     rough_in = contact_step = 0.0;
     noise_keep = 0.0;
     noise_in = 1.0;
-    rough_raw = rough_c1 = rough_felt = noise_w = 0.0;
+    rough_raw = rough_c1 = rough_felt = noise_w = noise_junction = 0.0;
+    noise_junction_step = 0.0;
     idle = false;
     frame_count = 0;
     friction_skipped = false;
@@ -247,11 +249,12 @@ struct Scene::Impl {
       rough_in = contact_step = 0.0;
       noise_keep = 0.0;  // white friction noise
       noise_in = 1.0;
+      noise_junction_step = 0.0;
       return;
     }
     if (!(ds > 0.0)) {
       rough_keep = noise_keep = 1.0;
-      rough_in = noise_in = contact_step = 0.0;
+      rough_in = noise_in = contact_step = noise_junction_step = 0.0;
       return;
     }
     const double keep = std::exp(-ds / r.length_m);
@@ -269,6 +272,17 @@ struct Scene::Impl {
                                     : r.length_m;
     noise_keep = std::exp(-ds / noise_length);
     noise_in = std::sqrt(std::max(1.0 - noise_keep * noise_keep, 0.0));
+    // Each junction's force builds up over a slip of about its own size, the asperity scale ℓ
+    // (the critical slip distance of rock and metal friction is of the order of the contact
+    // size: Rabinowicz, Proc. Phys. Soc. 71, 1958; Dieterich, J. Geophys. Res. 84, 1979). So a
+    // rub's patch-long noise is also smoothed over ℓ: above v/(2πℓ) it falls off, and that
+    // corner rises with the speed through the modes, so a faster rub is brighter as well as
+    // louder. (A scrape's noise already renews every ℓ.) Only on a rough surface, where ℓ is
+    // the asperities' scale: on a polished one (glass) the junctions are the nib's own.
+    noise_junction_step =
+        gesture.style == ProbeStyle::kRub && r.rms_m > 0.0 && noise_length > r.length_m
+            ? 1.0 - std::exp(-ds / r.length_m)
+            : 0.0;
     contact_step = 1.0 - std::exp(-ds / ContactLength());
   }
 
@@ -360,7 +374,12 @@ struct Scene::Impl {
         // Unit-variance noise scaled by sqrt(|v| f_N) (Avanzini et al. 2005): white on a smooth
         // material, the spatial process of its roughness on a rough one.
         noise_w = noise_keep * noise_w + noise_in * (1.7320508075688772 * Uniform());
-        drive.noise_n = config.friction.sigma3 * noise_w * std::sqrt(drive.slide_velocity_mps * fn);
+        double w = noise_w;
+        if (noise_junction_step > 0.0) {
+          noise_junction += noise_junction_step * (noise_w - noise_junction);
+          w = noise_junction;
+        }
+        drive.noise_n = config.friction.sigma3 * w * std::sqrt(drive.slide_velocity_mps * fn);
       }
       friction_skipped = skips.relaxed_friction && config.friction.enabled &&
                          drive.friction_share > 0.0 && FrictionIdle(drive);

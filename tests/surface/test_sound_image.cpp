@@ -157,6 +157,37 @@ TEST_CASE("row height repeats each row, and recordings longer than 5 s are cut t
   CHECK_THROWS_AS(SoundToImage(Sine(100, 10.0), options), std::invalid_argument);
 }
 
+TEST_CASE("level_quantile maps that share of the samples' level to white and clips above it",
+          "[surface]") {
+  // 1000 samples, |s| = 0.001 ... 1.0 evenly, alternating in sign: the 60 % level is 0.6.
+  std::vector<float> ramp(1000);
+  for (std::size_t i = 0; i < ramp.size(); ++i) {
+    const float magnitude = static_cast<float>(i + 1) / 1000.0f;
+    ramp[i] = i % 2 == 0 ? magnitude : -magnitude;
+  }
+  SoundImageOptions options;
+  options.samples_per_row = 1000;
+  options.row_length_px = 1000;  // one pixel per sample
+  const auto peak = SoundToImage(ramp, options);
+  options.level_quantile = 0.6;
+  const auto level = SoundToImage(ramp, options);
+  // Default: the peak is white, half the peak a quarter above mid-grey.
+  CHECK(peak.at(999, 0) == Approx(0.0).margin(1e-6));  // i = 999 is odd: -1.0
+  CHECK(peak.at(998, 0) == Approx(0.5 + 0.5 * 0.999).margin(1e-6));
+  CHECK(peak.at(298, 0) == Approx(0.5 + 0.5 * 0.299).margin(1e-6));
+  // 0.6: 0.299 reads as 0.299 / 0.6 of full scale (to the histogram's 1/4096 of the peak), and
+  // everything louder than 0.6 is white or black.
+  CHECK(level.at(298, 0) == Approx(0.5 + 0.5 * 0.299 / 0.6).margin(2e-3));
+  CHECK(level.at(598, 0) == Approx(0.5 + 0.5 * 0.599 / 0.6).margin(2e-3));
+  CHECK(level.at(800, 0) == 1.0f);
+  CHECK(level.at(801, 0) == 0.0f);
+  // Out of (0, 1]: refused.
+  for (const double bad : {0.0, -0.5, 1.5, std::nan("")}) {
+    options.level_quantile = bad;
+    CHECK_THROWS_AS(SoundToImage(ramp, options), std::invalid_argument);
+  }
+}
+
 TEST_CASE("silence becomes a uniform mid-grey image, not amplified noise", "[surface]") {
   const auto image = SoundToImage(std::vector<float>(9600, 0.0f), {});
   for (const float l : image.luminance) REQUIRE(l == 0.5f);
