@@ -186,6 +186,13 @@ class OutputStage {
     *haptic = static_cast<float>(haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y));
   }
 
+  // `n` frames at once, interleaved into `out` (sound, haptic): the same arithmetic in the same
+  // order per channel as Process() called frame by frame, so the same samples bit for bit (the
+  // scene's deferred frames). Each channel runs as its own loop and the band-pass as three
+  // sections at a time with their state in registers: per frame, the nine sections' dependency
+  // chain and its state round trip through memory made this stage a tenth of the scene's time.
+  void ProcessBlock(const double* pickup, const double* felt, float* out, int n);
+
   // Real-time safe: the pen landed for a new stroke (Leveller::NewStroke).
   void NewStroke() { sound_leveller_.NewStroke(); }
 
@@ -228,6 +235,10 @@ class OutputStage {
   Leveller sound_leveller_;
 
   void StartTrimRamp(double samples);
+  // Up to kBlockFrames of ProcessBlock; returns how many frames it finished (fewer when the
+  // band-pass guard reset the stage: the rest is run again from the reset state).
+  static constexpr int kBlockFrames = 64;
+  int ProcessRun(const double* pickup, const double* felt, float* out, int n);
 };
 
 }  // namespace sas::synth
