@@ -159,7 +159,7 @@ void OutputStage::SetStrokeGains(double sound, double haptic, double ramp_s) {
   if (stroke_sound_step_ == 0.0) stroke_sound_ = stroke_sound_target_;
 }
 
-double OutputStage::SoftLimit(double x) {
+double OutputStage::SoftShoulder(double x) {
   if (!std::isfinite(x)) return std::isnan(x) ? 0.0 : (x > 0.0 ? 1.0 : -1.0);
   const double magnitude = std::fabs(x);
   if (magnitude <= kKnee) return x;
@@ -200,7 +200,9 @@ void OutputStage::ProcessBlock(const double* pickup, const double* felt, float* 
 
 int OutputStage::ProcessRun(const double* pickup, const double* felt, float* out, int n) {
   n = std::min(n, kBlockFrames);
-  // The sound channel (Process's first half).
+  // The sound channel (Process's first half); the limiter in a loop of its own (measured faster:
+  // the leveller's loop stays small).
+  double sound[kBlockFrames], heard[kBlockFrames];
   for (int i = 0; i < n; ++i) {
     const double p = std::isfinite(pickup[i]) ? pickup[i] : 0.0;
     if (stroke_sound_ != stroke_sound_target_) {
@@ -209,9 +211,13 @@ int OutputStage::ProcessRun(const double* pickup, const double* felt, float* out
         stroke_sound_ = stroke_sound_target_;
       }
     }
-    out[2 * i] =
-        static_cast<float>(SoftLimit(sound_leveller_.Apply(sound_gain_ * stroke_sound_ * p)));
+    sound[i] = heard[i] = sound_gain_ * stroke_sound_ * p;
   }
+  if (sound_leveller_.cap_square > 0.0) {
+    Cascade<2>(sound_leveller_.weighting.data(), heard, n);
+    for (int i = 0; i < n; ++i) sound[i] = sound_leveller_.ApplyHeard(sound[i], heard[i]);
+  }
+  for (int i = 0; i < n; ++i) out[2 * i] = static_cast<float>(SoftLimit(sound[i]));
   if (!haptic_enabled_) {
     for (int i = 0; i < n; ++i) out[2 * i + 1] = 0.0f;
     return n;
