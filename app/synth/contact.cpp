@@ -233,9 +233,12 @@ class DiscreteGradientSolve {
         compliance_(compliance),
         mu_over_h_(m.mu / h),
         a_(mu_over_h_ * compliance / 3.0),
-        v0_(m.Potential(x0)) {
+        v0_(0.0) {
     if (x0 > 0.0) {
       f0_ = m.Force(x0);
+      // V(x0) = Potential's own product k x0^α · x0 / (α + 1), from the same power (a pow for
+      // the shapes without a fast path).
+      v0_ = f0_ * x0 * m.inv_alpha_plus_one;
       if (m.has_pow_series) inv_x0_ = 1.0 / x0;
       const double df0 = m.alpha * f0_ / x0;  // f'(x0)
       slope0_ = 0.5 * df0 + f0_ * m.mu / h + f0_ * a_ * df0;
