@@ -259,8 +259,12 @@ class DiscreteGradientSolve {
     }
     const double scale = std::max(std::fabs(x0_), std::fabs(c)) + 1e-300;
     double slope = 1.0;
+    // The evaluation inlined into the solve: as a call, its 24-byte result went through memory.
     d = SolveMonotone(
-        [&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_, inv_x0_); }, c,
+        [&](double dd) __attribute__((always_inline)) {
+          return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_, inv_x0_);
+        },
+        c,
         compliance_, d, scale, force, &slope);
     // R(d) = d - c + C F(d) = 0: dd/dc = 1 / R', dF/dc = F' / R' = (R' - 1) / (C R').
     if (slope > 0.0) *dforce_dc = (slope - 1.0) / (compliance_ * slope);
