@@ -660,8 +660,12 @@ void BristleLimits::CacheStart(double z0) {
   start_alpha_negative = std::numeric_limits<double>::quiet_NaN();
 }
 
-bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
-                  double* dmean_du) {
+namespace {
+
+// BristleSlope's body, inlined into the closed sliding step's Newton loop (as a call its two
+// results went through memory).
+[[gnu::always_inline]] inline bool SlopeOfStep(const BristleStep& step, const BristleLimits& limits,
+                                               double* dz1_du, double* dmean_du) {
   switch (step.slope) {
     case BristleStep::Slope::kElastic:  // z1 = z0 + du, mean = z0 + du / 2
       *dz1_du = 1.0;
@@ -692,6 +696,13 @@ bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* 
     default:
       return false;
   }
+}
+
+}  // namespace
+
+bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
+                  double* dmean_du) {
+  return SlopeOfStep(step, limits, dz1_du, dmean_du);
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
@@ -865,7 +876,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       return true;
     }
     double dz1_du = 0.0, dmean_du = 0.0;
-    if (BristleSlope(b, limits, &dz1_du, &dmean_du)) {
+    if (SlopeOfStep(b, limits, &dz1_du, &dmean_du)) {
       // df/du of FrictionStepForce: σ0 mean' + σ1 z1' / h (while the damping acts) + σ2 / h.
       const double dz = b.z1 - in.z0;
       slope_f = friction.sigma0 * dmean_du +
