@@ -90,8 +90,9 @@ struct Secant {
 }
 
 // `f0`, `inv_x0`: as ForceNear's.
-Secant PotentialSecant(const ImpactModel& m, double x0, double v0, double d, double f0,
-                       double inv_x0) {
+// Inlined: as a call, its 24-byte result went through memory on the Newton chain.
+[[gnu::always_inline]] inline Secant PotentialSecant(const ImpactModel& m, double x0, double v0,
+                                                     double d, double f0, double inv_x0) {
   const double x1 = x0 + d;
   Secant s;
   if (x0 <= 0.0 && x1 <= 0.0) return s;
@@ -232,9 +233,12 @@ class DiscreteGradientSolve {
         compliance_(compliance),
         mu_over_h_(m.mu / h),
         a_(mu_over_h_ * compliance / 3.0),
-        v0_(m.Potential(x0)) {
+        v0_(0.0) {
     if (x0 > 0.0) {
       f0_ = m.Force(x0);
+      // V(x0) = Potential's own product k x0^α · x0 / (α + 1), from the same power (a pow for
+      // the shapes without a fast path).
+      v0_ = f0_ * x0 * m.inv_alpha_plus_one;
       if (m.has_pow_series) inv_x0_ = 1.0 / x0;
       const double df0 = m.alpha * f0_ / x0;  // f'(x0)
       slope0_ = 0.5 * df0 + f0_ * m.mu / h + f0_ * a_ * df0;
@@ -255,8 +259,12 @@ class DiscreteGradientSolve {
     }
     const double scale = std::max(std::fabs(x0_), std::fabs(c)) + 1e-300;
     double slope = 1.0;
+    // The evaluation inlined into the solve: as a call, its 24-byte result went through memory.
     d = SolveMonotone(
-        [&](double dd) { return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_, inv_x0_); }, c,
+        [&](double dd) __attribute__((always_inline)) {
+          return NormalForce(m_, x0_, v0_, dd, mu_over_h_, f0_, a_, inv_x0_);
+        },
+        c,
         compliance_, d, scale, force, &slope);
     // R(d) = d - c + C F(d) = 0: dd/dc = 1 / R', dF/dc = F' / R' = (R' - 1) / (C R').
     if (slope > 0.0) *dforce_dc = (slope - 1.0) / (compliance_ * slope);
@@ -652,8 +660,12 @@ void BristleLimits::CacheStart(double z0) {
   start_alpha_negative = std::numeric_limits<double>::quiet_NaN();
 }
 
-bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
-                  double* dmean_du) {
+namespace {
+
+// BristleSlope's body, inlined into the closed sliding step's Newton loop (as a call its two
+// results went through memory).
+[[gnu::always_inline]] inline bool SlopeOfStep(const BristleStep& step, const BristleLimits& limits,
+                                               double* dz1_du, double* dmean_du) {
   switch (step.slope) {
     case BristleStep::Slope::kElastic:  // z1 = z0 + du, mean = z0 + du / 2
       *dz1_du = 1.0;
@@ -684,6 +696,13 @@ bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* 
     default:
       return false;
   }
+}
+
+}  // namespace
+
+bool BristleSlope(const BristleStep& step, const BristleLimits& limits, double* dz1_du,
+                  double* dmean_du) {
+  return SlopeOfStep(step, limits, dz1_du, dmean_du);
 }
 
 BristleLimits FrictionModel::Limits(double slip_velocity_mps, double fn) const {
@@ -857,7 +876,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
       return true;
     }
     double dz1_du = 0.0, dmean_du = 0.0;
-    if (BristleSlope(b, limits, &dz1_du, &dmean_du)) {
+    if (SlopeOfStep(b, limits, &dz1_du, &dmean_du)) {
       // df/du of FrictionStepForce: σ0 mean' + σ1 z1' / h (while the damping acts) + σ2 / h.
       const double dz = b.z1 - in.z0;
       slope_f = friction.sigma0 * dmean_du +

@@ -108,6 +108,21 @@ struct Scene::Impl {
   double noise_keep = 0.0, noise_in = 1.0;
   double rough_raw = 0.0, rough_c1 = 0.0, rough_felt = 0.0, noise_w = 0.0;
   double noise_junction_step = 0.0, noise_junction = 0.0;
+  // Frames rendered but not yet through the output stage (RenderFrame -> FlushOutput): run as a
+  // block (OutputStage::ProcessBlock) the stage's filters keep their state in registers and one
+  // frame's work overlaps the next's. Flushed before anything that reads or changes the stage (a
+  // command, the idle check) and at the end of Process, so the output is the per-frame one, bit
+  // for bit.
+  static constexpr int kOutputChunk = kIdleCheckFrames;
+  int pending = 0;
+  float* pending_out = nullptr;  // the first pending frame
+  double pending_pickup[kOutputChunk] = {};
+  double pending_felt[kOutputChunk] = {};
+
+  void FlushOutput() {
+    if (pending > 0) output.ProcessBlock(pending_pickup, pending_felt, pending_out, pending);
+    pending = 0;
+  }
 
   double Felt(double x, double y) const {
     return reader.Felt(x, y, gesture.width_mm * 1e-3, gesture.penetration_m, gesture.style,
@@ -130,6 +145,7 @@ struct Scene::Impl {
 
   void Reset() {
     modes.Reset();
+    pending = 0;
     probe = ProbeDynamics{};
     // A reset scene is silent: the transducer trim may jump to the requested mode at once.
     output.SetLowVibration(low_vibration.load(std::memory_order_relaxed));
@@ -410,7 +426,11 @@ struct Scene::Impl {
     // probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive (Verrillo,
     // JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its fluctuation.
     const double felt = probe.active ? (probe.normal_n + probe.friction_n) * felt_per_newton : 0.0;
-    output.Process(pickup, felt, &frame[0], &frame[1]);
+    if (pending == kOutputChunk) FlushOutput();
+    if (pending == 0) pending_out = frame;
+    pending_pickup[pending] = pickup;
+    pending_felt[pending] = felt;
+    ++pending;
   }
 };
 
@@ -499,6 +519,7 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
   for (int f = 0; f < frames; ++f) {
     while (next < command_count &&
            (commands[next].frame_offset <= static_cast<std::uint32_t>(f) || f == frames - 1)) {
+      s.FlushOutput();
       s.Apply(commands[next]);
       ++next;
     }
@@ -521,12 +542,16 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
     // Idle check on absolute time (every kIdleCheckFrames frames since Reset), so that skipping
     // starts on the same frame whatever the block size. Entering idle zeroes the inaudible state:
     // the skipped frames then are exactly the zeros written.
-    if (++s.frame_count % kIdleCheckFrames == 0 && s.skips.idle_blocks && !s.idle && s.Silent()) {
-      s.modes.Reset();
-      s.output.Reset();
-      s.idle = true;
+    if (++s.frame_count % kIdleCheckFrames == 0) {
+      s.FlushOutput();
+      if (s.skips.idle_blocks && !s.idle && s.Silent()) {
+        s.modes.Reset();
+        s.output.Reset();
+        s.idle = true;
+      }
     }
   }
+  s.FlushOutput();
 }
 
 void Scene::SetLowVibration(bool on) {

@@ -3,7 +3,9 @@
 // time, that lowers the haptic level by exactly its configured amount (after its 20 ms ramp)
 // while the speaker channel stays bit for bit the same.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <vector>
 
@@ -225,4 +227,46 @@ TEST_CASE("the output stage holds the haptic ceiling for any finite input", "[ds
   }
   CHECK(peak <= static_cast<float>(p.haptic_ceiling));
   CHECK(peak > 0.099f);
+}
+
+TEST_CASE("the output stage's block path gives Process's samples bit for bit", "[dsp]") {
+  // The scene runs its frames through ProcessBlock; it must be Process frame by frame, including
+  // the gain ramps, the leveller, NaN input, and the band-pass guard's reset on overflow.
+  const double cap = GENERATE(0.05, 0.0);  // leveller on / off
+  const bool haptic = GENERATE(true, false);
+  OutputParams p;
+  p.sound_level_cap = cap;
+  p.haptic_gain = 3.0;
+  p.haptic_enabled = haptic;
+  OutputStage per_frame, block;
+  per_frame.Prepare(p, kFs);
+  block.Prepare(p, kFs);
+  constexpr int kFrames = 6000;
+  std::vector<double> pickup(kFrames), felt(kFrames);
+  for (int n = 0; n < kFrames; ++n) {
+    pickup[static_cast<std::size_t>(n)] = 0.4 * std::sin(0.05 * n) * std::sin(0.0003 * n * n);
+    felt[static_cast<std::size_t>(n)] = 0.02 * std::sin(0.01 * n);
+  }
+  pickup[700] = std::numeric_limits<double>::quiet_NaN();
+  felt[900] = std::numeric_limits<double>::infinity();
+  pickup[2000] = 1.7e308;  // the band-pass overflows: the guard resets the stage
+  pickup[2001] = -1.7e308;
+  std::vector<float> e(2 * kFrames), f(2 * kFrames);
+  int n = 0;
+  for (int chunk = 1; n < kFrames; chunk = chunk % 97 + 7) {
+    const int len = std::min(chunk, kFrames - n);
+    if (n > 3000 && n < 3200) {  // a ramp starting inside the run
+      per_frame.SetStrokeGains(0.5, 2.0, 0.005);
+      block.SetStrokeGains(0.5, 2.0, 0.005);
+    }
+    for (int i = n; i < n + len; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      per_frame.Process(pickup[k], felt[k], &e[2 * k], &e[2 * k + 1]);
+    }
+    block.ProcessBlock(&pickup[static_cast<std::size_t>(n)], &felt[static_cast<std::size_t>(n)],
+                       &f[2 * static_cast<std::size_t>(n)], len);
+    n += len;
+  }
+  CHECK(std::memcmp(e.data(), f.data(), e.size() * sizeof(float)) == 0);
+  if (haptic) CHECK(std::fabs(f[2 * 2500 + 1]) > 0.0f);  // signal on ch 2 after the reset
 }
