@@ -5,12 +5,6 @@
 #include <cmath>
 #include <numbers>
 
-
-
-
-
-
-
 namespace sas::synth {
 namespace {
 
