@@ -195,12 +195,17 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < names.size(); ++i) {
       md << "### " << names[i]
          << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB "
-            "| centroid, Hz | relief alone, dB |\n|---|---|---|---|---|---|---|\n";
+            "| centroid, Hz | relief alone, dB | relief alone's centroid, Hz |\n"
+            "|---|---|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
-        std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %.1f |\n",
+        const bool relief_heard = c.response.relief_db >= sas::kiosk::kSilentDb;
+        std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %s | %s |\n",
                       sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
                       c.stroke.pressure, c.response.sound_db, c.response.haptic_db,
-                      c.response.centroid_hz, c.response.relief_db);
+                      c.response.centroid_hz, sas::kiosk::LevelText(c.response.relief_db).c_str(),
+                      relief_heard
+                          ? std::to_string(std::lround(c.response.relief_centroid_hz)).c_str()
+                          : "-");
         md << line;
       }
       md << "\n";

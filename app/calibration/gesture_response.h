@@ -57,6 +57,8 @@ struct StrokeResponse {
   // Channel 1's RMS for the same stroke with the relief alone (friction and the material's
   // micro-roughness off): how much of the sound the felt profile itself makes.
   double relief_db = -300.0;
+  // The relief alone's centroid: whether the felt profile on its own brightens with speed.
+  double relief_centroid_hz = 0.0;
 };
 
 inline constexpr double kRestS = 0.15;
@@ -125,5 +127,10 @@ ResponseCheck CheckResponseGrid(const std::string& surface_name,
                                 const ResponseLimits& limits = {});
 // How many relations CheckResponseGrid checks on one surface.
 int ResponseRelationCount();
+
+// A level for the figures: "-42.5", or "< -150" where the render is silent and what is left is
+// the float residue of a decaying ring (-220 dB is not a level anyone hears).
+inline constexpr double kSilentDb = -150.0;
+std::string LevelText(double db);
 
 }  // namespace sas::kiosk
