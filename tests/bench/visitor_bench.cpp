@@ -23,7 +23,8 @@
 // core. Writes docs/visitor-bench.md (--docs DIR).
 //
 // Usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR] [--quick] [--texture KEY]
-// (--texture plays one texture only, for profiling; it writes no docs)
+// [--cost-only] (--texture plays one texture only and --cost-only times without counting, both
+// for profiling; neither writes docs)
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -286,6 +287,7 @@ Options ParseArgs(int argc, char** argv) {
     }
   }
   if (!o.only.empty()) o.docs = "-";  // one texture is not the benchmark's page
+  if (!o.stats) o.docs = "-";         // nor is a page without the felt and contact counts
   if (o.quick) {
     o.strokes = std::min(o.strokes, 30);
     o.reps = 1;
@@ -320,6 +322,7 @@ struct Summary {
   std::string mix;
   std::map<std::string, std::vector<double>> by_style;
   int oversample = 1;
+  bool counted = false;  // the instrumented pass ran (not --cost-only)
 };
 
 // "#index style, speed, pressure, tilt, duration": enough to replay the worst stroke by hand.
@@ -365,11 +368,19 @@ Summary MeasureTexture(const Texture& tex, const std::vector<kiosk::VisitorStrok
   s.contact = counts->Share(counts->contact, counts->down);
   s.felt = counts->Share(counts->felt, counts->down);
   s.idle = counts->Share(counts->idle, counts->tail);
-  s.mix = SubstepMix(counts->mix, counts->down);
+  s.counted = opt.stats;
+  s.mix = s.counted ? SubstepMix(counts->mix, counts->down) : std::string();
   return s;
 }
 
 void PrintSummary(const Summary& s) {
+  if (!s.counted) {  // --cost-only: the shares would be 0 / 0
+    std::printf(
+        "%-16s median %.3f %%  p95 %.3f %%  worst %.3f %% (%s)  slowest block %.2f %% of its "
+        "period (no counts: --cost-only)\n",
+        s.name.c_str(), s.median, s.p95, s.worst, s.worst_stroke.c_str(), s.worst_block);
+    return;
+  }
   std::printf(
       "%-16s median %.3f %%  p95 %.3f %%  worst %.3f %% (%s)  contact %.1f %%  felt %.1f %%  "
       "ring-out idle %.1f %%  slowest block %.2f %% of its period\n",
@@ -464,6 +475,7 @@ int main(int argc, char** argv) {
     all.Add(counts);
     if (counts.felt == 0) unfelt = true;
   }
+  if (!opt.stats) return 0;  // the page's shares need the counts
   const std::string md = VisitorMarkdown(opt, summaries, all_costs, all);
   std::printf("%s", md.c_str());
   if (opt.docs != "-") {
@@ -472,7 +484,7 @@ int main(int argc, char** argv) {
     std::ofstream(path) << md;
     std::printf("wrote %s\n", path.c_str());
   }
-  if (unfelt && opt.stats) {
+  if (unfelt) {
     std::fprintf(stderr, "a texture's strokes never felt its profile: not a visitor benchmark\n");
     return 1;
   }
