@@ -20,18 +20,44 @@ float PeakOf(std::span<const float> samples, std::size_t count) {
   return peak;
 }
 
-// The |sample| below which `quantile` of the samples lie, from a histogram of |s| / peak (no
-// copy of the recording, which stays in the caller's memory only). 1: the peak itself.
-double LevelOf(std::span<const float> samples, std::size_t count, float peak, double quantile) {
+// The |sample| below which `quantile` of the active samples lie, from a histogram of |s| / peak
+// (no copy of the recording, which stays in the caller's memory only). 1: the peak itself.
+// Active: the 10 ms blocks within kActiveRangeDb of the loudest block. Pauses and the silence
+// before and after a take are not speech; counted, they pull the level down and the speech
+// clips the more the longer the visitor waited (the speech level is that of the active speech
+// alone: ITU-T P.56). 30 dB is the dynamic range of running speech, peaks to weakest sounds
+// (ANSI S3.5-1997, the Speech Intelligibility Index).
+constexpr double kActiveRangeDb = 30.0;
+double LevelOf(std::span<const float> samples, std::size_t count, float peak, double quantile,
+               double sample_rate_hz) {
   if (quantile >= 1.0 || !(peak > 1e-9f)) return peak;
+  const std::size_t block =
+      std::max<std::size_t>(1, static_cast<std::size_t>(0.01 * sample_rate_hz));
+  const auto block_power = [&](std::size_t first) {
+    const std::size_t last = std::min(count, first + block);
+    double sum = 0.0;
+    for (std::size_t i = first; i < last; ++i) sum += static_cast<double>(samples[i]) * samples[i];
+    return sum / static_cast<double>(last - first);
+  };
+  double loudest = 0.0;
+  for (std::size_t first = 0; first < count; first += block) {
+    loudest = std::max(loudest, block_power(first));
+  }
+  const double gate = loudest * std::pow(10.0, -kActiveRangeDb / 10.0);
   constexpr std::size_t kBins = 4096;  // the level to 1/4096 of the peak: finer than any screen
   constexpr double kTop = static_cast<double>(kBins - 1);
   std::array<std::size_t, kBins> histogram{};
-  for (std::size_t i = 0; i < count; ++i) {
-    const double bin = static_cast<double>(std::fabs(samples[i])) / peak * kTop;
-    ++histogram[std::min(static_cast<std::size_t>(bin), kBins - 1)];
+  std::size_t active = 0;
+  for (std::size_t first = 0; first < count; first += block) {
+    if (block_power(first) < gate) continue;
+    const std::size_t last = std::min(count, first + block);
+    for (std::size_t i = first; i < last; ++i) {
+      const double bin = static_cast<double>(std::fabs(samples[i])) / peak * kTop;
+      ++histogram[std::min(static_cast<std::size_t>(bin), kBins - 1)];
+    }
+    active += last - first;
   }
-  const double wanted = std::ceil(quantile * static_cast<double>(count));
+  const double wanted = std::ceil(quantile * static_cast<double>(active));
   double below = 0.0;
   for (std::size_t b = 0; b < kBins; ++b) {
     below += static_cast<double>(histogram[b]);
@@ -104,7 +130,7 @@ GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& 
     throw std::invalid_argument("SoundToImage: image would be taller than 16384 rows");
   }
   const float peak = PeakOf(samples, count);
-  const double level = LevelOf(samples, count, peak, o.level_quantile);
+  const double level = LevelOf(samples, count, peak, o.level_quantile, o.sample_rate_hz);
   const double scale = level > 1e-9 ? 0.5 / level : 0.0;  // silence: uniform mid-grey
   GrayImage image{o.row_length_px, static_cast<int>(chunks) * o.row_height_px,
                   std::pmr::vector<float>(memory)};

@@ -45,8 +45,9 @@ struct SoundImageOptions {
   double max_duration_s = 5.0;  // longer recordings are cut (the kiosk records 5 s)
   double sample_rate_hz = 48000.0;
   // The |sample| level that maps to white and black: the level below which this share of the
-  // samples lie. 1 is the peak (figure 3); below 1 the loudest samples clip and a peaky sound
-  // (speech) fills the image instead of sitting near mid-grey.
+  // active samples lie (the 10 ms blocks within 30 dB of the loudest: pauses and silence around
+  // a take do not count). 1 is the peak (figure 3); below 1 the loudest samples clip and a peaky
+  // sound (speech) fills the image instead of sitting near mid-grey.
   double level_quantile = 1.0;
 };
 

@@ -188,6 +188,45 @@ TEST_CASE("level_quantile maps that share of the samples' level to white and cli
   }
 }
 
+TEST_CASE("level_quantile counts the active speech only: pauses around a take leave its level",
+          "[surface]") {
+  // A 0.25 s syllable (a 200 Hz tone under a sin² envelope) alone, and after 0.75 s of silence
+  // or of faint noise 70 dB under it: one row, one pixel per sample, so sample j of the syllable
+  // is pixel j, or 6000 + j after the pause.
+  constexpr int kRate = 8000, kBurst = 2000, kPause = 6000;
+  std::vector<float> burst(kBurst);
+  for (int i = 0; i < kBurst; ++i) {
+    const double envelope = std::pow(std::sin(std::numbers::pi * i / kBurst), 2.0);
+    burst[static_cast<std::size_t>(i)] =
+        static_cast<float>(0.8 * envelope * std::sin(2.0 * std::numbers::pi * 200.0 * i / kRate));
+  }
+  const auto image = [&](const std::vector<float>& take) {
+    SoundImageOptions options;
+    options.sample_rate_hz = kRate;
+    options.samples_per_row = static_cast<int>(take.size());
+    options.row_length_px = static_cast<int>(take.size());
+    options.level_quantile = 0.9;
+    return SoundToImage(take, options);
+  };
+  const auto alone = image(burst);
+  for (const float pause_level : {0.0f, 2.5e-4f}) {
+    std::vector<float> take(kPause);
+    for (std::size_t i = 0; i < take.size(); ++i) take[i] = i % 2 == 0 ? pause_level : -pause_level;
+    take.insert(take.end(), burst.begin(), burst.end());
+    const auto waited = image(take);
+    INFO("pause level " << pause_level);
+    int compared = 0;
+    for (int j = 0; j < kBurst; ++j) {
+      // Below the level (not clipped) in the take alone: the same grey after the pause.
+      const float a = alone.at(j, 0);
+      if (a <= 0.02f || a >= 0.98f) continue;
+      REQUIRE(waited.at(kPause + j, 0) == Approx(a).margin(2e-3));
+      ++compared;
+    }
+    CHECK(compared > kBurst / 2);
+  }
+}
+
 TEST_CASE("silence becomes a uniform mid-grey image, not amplified noise", "[surface]") {
   const auto image = SoundToImage(std::vector<float>(9600, 0.0f), {});
   for (const float l : image.luminance) REQUIRE(l == 0.5f);
