@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
             "| centroid, Hz | relief alone, dB | relief alone's centroid, Hz |\n"
             "|---|---|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
-        const bool relief_heard = c.response.relief_db >= sas::kiosk::kSilentDb;
+        const bool relief_heard = c.response.relief_db >= sas::kiosk::kPrintFloorDb;
         std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %s | %s |\n",
                       sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
                       c.stroke.pressure, c.response.sound_db, c.response.haptic_db,

@@ -215,8 +215,8 @@ std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface, in
 
 std::string LevelText(double db) {
   char text[32];
-  if (db < kSilentDb) {
-    std::snprintf(text, sizeof text, "< %.0f", kSilentDb);
+  if (db < kPrintFloorDb) {
+    std::snprintf(text, sizeof text, "< %.0f", kPrintFloorDb);
   } else {
     std::snprintf(text, sizeof text, "%.1f", db);
   }
@@ -254,8 +254,8 @@ ResponseCheck CheckResponseGrid(const std::string& surface_name,
   // How far the relief alone is under the stroke, "more than N" where it is silent.
   const auto Under = [](const StrokeResponse& r) {
     char figure[32];
-    if (r.relief_db < kSilentDb) {
-      std::snprintf(figure, sizeof figure, "over %.0f", r.sound_db - kSilentDb);
+    if (r.relief_db < kPrintFloorDb) {
+      std::snprintf(figure, sizeof figure, "over %.0f", r.sound_db - kPrintFloorDb);
     } else {
       std::snprintf(figure, sizeof figure, "%.0f", r.sound_db - r.relief_db);
     }

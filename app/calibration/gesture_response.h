@@ -129,8 +129,9 @@ ResponseCheck CheckResponseGrid(const std::string& surface_name,
 int ResponseRelationCount();
 
 // A level for the figures: "-42.5", or "< -150" where the render is silent and what is left is
-// the float residue of a decaying ring (-220 dB is not a level anyone hears).
-inline constexpr double kSilentDb = -150.0;
+// the float residue of a decaying ring (-220 dB is not a level anyone hears). A print floor, not
+// surface::kSilenceDb (the value Loudness returns for digital silence).
+inline constexpr double kPrintFloorDb = -150.0;
 std::string LevelText(double db);
 
 }  // namespace sas::kiosk

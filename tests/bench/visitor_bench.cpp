@@ -287,7 +287,6 @@ Options ParseArgs(int argc, char** argv) {
     }
   }
   if (!o.only.empty()) o.docs = "-";  // one texture is not the benchmark's page
-  if (!o.stats) o.docs = "-";         // nor is a page without the felt and contact counts
   if (o.quick) {
     o.strokes = std::min(o.strokes, 30);
     o.reps = 1;
