@@ -21,7 +21,15 @@
 //   chord SECONDS          ctrl+alt+s held for SECONDS (the staff chord)
 //   wait SECONDS
 // A second mode keeps samples in memory for a core-dump control (see boot-test.sh):
-//   fake_devices hold <file>   reads the file into an ordinary heap buffer and sleeps
+//   fake_devices hold <file>   reads the file into an ordinary heap buffer, says "holding N
+//                              bytes" on stdout (the journal line the visitor waits for), sleeps
+// A third watches the loopback capture that arecord is writing (float32 stereo, 48 kHz), so the
+// visitor waits for what the speaker does instead of for a fixed time:
+//   fake_devices capture-wait <cap.f32> FROM_S loud|quiet DBFS WINDOW_S TIMEOUT_S
+//     the first WINDOW_S-long stretch of the speaker channel starting at or after FROM_S s of
+//     the capture whose RMS is above (loud) or below (quiet) DBFS; prints the capture time at
+//     its end and exits 0, or exits 1 when the capture has not shown one within TIMEOUT_S s of
+//     wall time (the file is read again as arecord appends to it)
 #include <fcntl.h>
 #include <linux/input.h>
 #include <linux/uhid.h>
@@ -37,6 +45,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -425,12 +434,62 @@ int Hold(const char* path) {
   for (;;) pause();
 }
 
+int CaptureWait(const char* path, double from_s, bool loud, double dbfs, double window_s,
+                double timeout_s) {
+  constexpr double kRate = 48000.0;
+  constexpr std::size_t kFrameBytes = 2 * sizeof(float);
+  const double threshold = std::pow(10.0, dbfs / 20.0);
+  const auto window = static_cast<std::size_t>(std::max(1.0, window_s * kRate));
+  // The window slides in 10 ms hops; its sum of squares is kept from per-hop sums.
+  const auto hop = static_cast<std::size_t>(kRate / 100.0);
+  const std::size_t hops_per_window = std::max<std::size_t>(1, (window + hop - 1) / hop);
+  std::vector<double> hop_energy;
+  std::size_t next_frame = static_cast<std::size_t>(std::max(0.0, from_s) * kRate);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  std::vector<float> buffer(2 * hop);
+  for (;;) {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      in.seekg(static_cast<std::streamoff>(next_frame * kFrameBytes));
+      while (in.read(reinterpret_cast<char*>(buffer.data()),
+                     static_cast<std::streamsize>(buffer.size() * sizeof(float)))) {
+        double energy = 0.0;
+        for (std::size_t i = 0; i < hop; ++i) energy += double(buffer[2 * i]) * buffer[2 * i];
+        hop_energy.push_back(energy);
+        next_frame += hop;
+        if (hop_energy.size() < hops_per_window) continue;
+        double sum = 0.0;
+        for (std::size_t i = hop_energy.size() - hops_per_window; i < hop_energy.size(); ++i)
+          sum += hop_energy[i];
+        const double rms = std::sqrt(sum / double(hops_per_window * hop));
+        if (loud ? rms > threshold : rms < threshold) {
+          std::printf("%.3f\n", double(next_frame) / kRate);
+          return 0;
+        }
+      }
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      std::fprintf(stderr, "capture-wait: no %s stretch after %.2f s within %.0f s\n",
+                   loud ? "loud" : "quiet", from_s, timeout_s);
+      return 1;
+    }
+    Sleep(0.05);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "hold") return Hold(argv[2]);
+  if (argc == 8 && std::string(argv[1]) == "capture-wait") {
+    const std::string mode = argv[4];
+    if (mode != "loud" && mode != "quiet") return 2;
+    return CaptureWait(argv[2], std::atof(argv[3]), mode == "loud", std::atof(argv[5]),
+                       std::atof(argv[6]), std::atof(argv[7]));
+  }
   if (argc != 3) {
-    std::fprintf(stderr, "usage: fake_devices <control fifo> <status file> | hold <file>\n");
+    std::fprintf(stderr, "usage: fake_devices <control fifo> <status file> | hold <file> | capture-wait ...\n");
     return 2;
   }
   Devices devices;

@@ -9,6 +9,8 @@
 //   voice SHOT.png               the screenshot is a sound image: grey, silent rows mid-grey,
 //                                some rows carrying sound
 //   find SPEECH.f32 FILE...      exit 1 when any FILE contains a stretch of the speech samples
+//   amber SHOT.png               prints how many pixels have the staff panel's warning amber
+//                                (a lost device's line, the panel's title)
 //
 // pace: real-time pacing for ALSA's file plugin. The plugin neither plays
 // nor captures in real time (measured: 0.5 s "plays" in ~1 ms), so the test points
@@ -267,6 +269,20 @@ int Find(const std::string& speech_path, const std::vector<std::string>& files) 
   return found == 0 ? 0 : 1;
 }
 
+// The staff panel's amber (about 250, 190, 60), with room for the panel's blending.
+int Amber(const std::string& shot_path) {
+  const auto shot = sas::ui::LoadPicture(shot_path);
+  long count = 0;
+  for (int y = 0; y < shot.height(); ++y) {
+    for (int x = 0; x < shot.width(); ++x) {
+      const auto p = shot.at(x, y);
+      if (std::abs(p.r - 250) < 30 && std::abs(p.g - 190) < 30 && std::abs(p.b - 60) < 40) ++count;
+    }
+  }
+  std::printf("%ld\n", count);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -280,12 +296,13 @@ int main(int argc, char** argv) {
       return Dent(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]));
     if (command == "voice" && argc == 3) return Voice(argv[2]);
     if (command == "find" && argc >= 3) return Find(argv[2], {argv + 3, argv + argc});
+    if (command == "amber" && argc == 3) return Amber(argv[2]);
   } catch (const std::exception& e) {
     std::printf("FAIL: %s\n", e.what());
     return 1;
   }
   if (command != "pace" || argc != 7) {
-    std::fprintf(stderr, "usage: kiosk_e2e_tool pace|speech|audio|matches|voice|find ...\n");
+    std::fprintf(stderr, "usage: kiosk_e2e_tool pace|speech|audio|matches|dent|voice|find|amber ...\n");
     return 2;
   }
   std::signal(SIGPIPE, SIG_IGN);
