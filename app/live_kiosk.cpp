@@ -10,6 +10,12 @@
 // The loop sleeps in SDL's event wait (2 ms while a pen tablet is connected, whose readings come
 // from libinput's thread, so a reading waits at most that long; longer with mouse/touch, which
 // wake it). While the staff panel is open the pen works its buttons (kiosk/staff_panel.h).
+//
+// systemd hears READY=1 only once the first frame is on the screen (everything before is start-up,
+// under the unit's start timeout), and from then on a WATCHDOG=1 after every pass. A pass takes a
+// bounded share of the input waiting for it (SDL events, pen readings, switch events: see
+// KioskControl) and leaves the rest, timestamps intact, to the next passes, which then do not
+// sleep: input that piled up while a slow machine started cannot hold off the frame or the ping.
 #include "live_kiosk.h"
 
 #include <algorithm>
@@ -166,7 +172,8 @@ LiveDevices OpenDevices(const kiosk::KioskConfig& config, kiosk::KioskEngine& en
   }
   devices.switches = platform::OpenSwitchInputs(switches_config, board, std::move(gpio_events));
 
-  devices.pen = platform::OpenPen(kiosk::PenConfigFor(config, width, height), board);
+  devices.pen = platform::OpenPen(kiosk::PenConfigFor(config, width, height), board,
+                                  backends.pen ? backends.pen() : nullptr);
   return devices;
 }
 
@@ -198,6 +205,7 @@ struct LoopParts {
   platform::WatchdogSupervisor& watchdog;
   platform::Logger& log;
   const KioskBackends& backends;
+  std::FILE* out;  // the "kiosk ready" line
 };
 
 // The main loop (main thread) and the little it keeps between passes.
@@ -224,16 +232,22 @@ class LiveLoop {
       FollowStaffPanel();
       AdaptToAmbient(now_s);
       Draw(now_s);
-      p_.watchdog.Tick(now_ns);
+      if (ready_) p_.watchdog.Tick(now_ns);  // pings follow READY=1, never precede it
       if (p_.backends.on_pass) p_.backends.on_pass(pass_start_ns, platform::MonotonicNowNs());
     }
   }
 
  private:
+  // SDL events one pass takes at most: like the pen's budget (KioskControl), many times what a
+  // mouse or touch screen sends in a frame, and a bounded amount of work.
+  static constexpr std::size_t kSdlEventsPerPass = 64;
+
   void HandleWindowEvents() {
     const bool tablet = p_.devices.pen && p_.devices.pen->Connected();
-    const int wait_ms = p_.view.view().NeedsRedraw() ? 0 : (tablet ? 2 : 8);
-    for (const auto& event : p_.window.PollEvents(wait_ms)) {
+    // Input left over from the last pass is worked off without sleeping first.
+    const bool busy = p_.view.view().NeedsRedraw() || p_.control.Backlog();
+    const int wait_ms = busy ? 0 : (tablet ? 2 : 8);
+    for (const auto& event : p_.window.PollEvents(wait_ms, kSdlEventsPerPass)) {
       using Kind = ui::UiEvent::Kind;
       switch (event.kind) {
         case Kind::kPointerDown:
@@ -346,7 +360,25 @@ class LiveLoop {
     }
     if (p_.view.Advance(now_s, p_.window.staff_panel_open(), std::move(staff_overlays))) {
       p_.window.Present(p_.view.view().TakeFrame());
+      if (p_.backends.on_present) p_.backends.on_present(platform::MonotonicNowNs());
+      if (!ready_) AnnounceReady();
     }
+  }
+
+  // The first frame is on the screen: the kiosk is up for systemd (READY=1; its watchdog runs from
+  // here, fed after every pass) and for whoever started it (one line on `out`).
+  void AnnounceReady() {
+    ready_ = true;
+    p_.watchdog.Ready("exploring");
+    const auto& pen = p_.devices.pen;
+    const char* pen_kind = !pen               ? "mouse/touch"
+                           : pen->Connected() ? "libinput"
+                                              : "mouse/touch (libinput waiting for a tablet)";
+    std::fprintf(p_.out, "kiosk ready %dx%d %s (%s), audio %s, pen %s, switches %s\n", width_,
+                 height_, p_.window.driver().c_str(), p_.window.renderer_name().c_str(),
+                 p_.devices.output->Running() ? "running" : "silent", pen_kind,
+                 p_.devices.switches.ActiveBackend());
+    std::fflush(p_.out);
   }
 
   LoopParts p_;
@@ -358,6 +390,7 @@ class LiveLoop {
   kiosk::AmbientGain ambient_;
   double ambient_last_s_ = -1.0;
   bool passive_shown_ = false;  // the view is drawing the passive stroke's dent
+  bool ready_ = false;          // the first frame was presented and announced
 };
 
 }  // namespace
@@ -417,18 +450,9 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
                               log);
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   WatchDeviceThreads(watchdog, devices);
-  watchdog.Ready("exploring");
-  const char* pen_kind = !devices.pen               ? "mouse/touch"
-                         : devices.pen->Connected() ? "libinput"
-                                                    : "mouse/touch (libinput waiting for a tablet)";
-  std::fprintf(out, "kiosk ready %dx%d %s (%s), audio %s, pen %s, switches %s\n", width, height,
-               window.driver().c_str(), window.renderer_name().c_str(),
-               devices.output->Running() ? "running" : "silent", pen_kind,
-               devices.switches.ActiveBackend());
-  std::fflush(out);
 
   LiveLoop({config, kiosk::ConfigStatusLine(options.config_path, loaded), window, *engine, *view,
-            devices, control, board, watchdog, log, backends})
+            devices, control, board, watchdog, log, backends, out})
       .Run();
   control.Shutdown();
   devices.input->Stop();

@@ -6,6 +6,7 @@
 //   sketch-a-scratch kiosk [--config FILE] [--state-dir DIR]   (FILE default
 //   /etc/sketch-a-scratch/kiosk.toml); exits 1 at once when there is no display.
 
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "platform/audio/audio_output.h"
 #include "platform/gpio/gpio_switches.h"
+#include "platform/pen/pen_source.h"
 
 namespace sas::app {
 
@@ -28,14 +30,23 @@ namespace sas::app {
 // when set, is the audio output's device in place of PortAudio (the supervision, its back-off and
 // its background thread stay the real ones), and `on_pass`, when set, is called at the end of
 // every pass of the UI loop with the pass's start and end (CLOCK_MONOTONIC ns); it must be quick.
+//
+// The start-up test (tests/kiosk/test_live_kiosk.cpp) uses two more: `pen`, when set, is the pen
+// source in place of libinput (OpenPen's start and status stay the real ones), and `on_present`,
+// when set, is called right after each frame the window presented (CLOCK_MONOTONIC ns), before
+// anything the frame triggers (the first one: READY=1 and the "kiosk ready" line).
 struct KioskBackends {
   std::function<std::unique_ptr<platform::GpioEventSource>(const platform::GpioSwitchConfig&)>
       gpio_events;
   std::function<std::unique_ptr<platform::AudioStreamBackend>()> audio_stream;
   std::function<void(std::int64_t start_ns, std::int64_t end_ns)> on_pass;
+  std::function<std::unique_ptr<platform::PenSource>()> pen;
+  std::function<void(std::int64_t presented_ns)> on_present;
 };
 
-// Runs until SIGTERM/SIGINT (systemd's stop), saving the usage counters on the way out. SIGHUP
+// Runs until SIGTERM/SIGINT (systemd's stop), saving the usage counters on the way out. It tells
+// systemd it is ready (READY=1) and prints "kiosk ready ..." on `out` once its first frame is on
+// the screen, and pings the watchdog after every pass of its loop from then on. SIGHUP
 // saves them at once and the kiosk runs on; SIGUSR1 writes the devices' status to the journal;
 // SIGPIPE is ignored. Returns the exit code; 1 when no window opens.
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,

@@ -55,14 +55,19 @@ bool KioskControl::PointerActive() const {
 }
 
 std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHandler& on_pen) {
+  backlog_ = false;
   if (devices_.pen != nullptr) {
     platform::PenReading reading;
-    while (devices_.pen->Pop(reading)) {
+    int taken = 0;
+    while (taken < kPenReadingsPerStep && devices_.pen->Pop(reading)) {
+      ++taken;
       last_pen_ = reading;
       on_pen(reading);
     }
+    backlog_ = taken == kPenReadingsPerStep;
     const bool connected = devices_.pen->Connected();
-    if (pen_was_connected_ && !connected && last_pen_.tip_down) {
+    // An unplugged tablet's stroke is lifted only after the readings it sent before it went.
+    if (!backlog_ && pen_was_connected_ && !connected && last_pen_.tip_down) {
       // Unplugged mid-stroke: no tip-up will ever come from it. Lift the stroke where it was.
       platform::PenReading lift = last_pen_;
       lift.time_ns = now_ns;
@@ -73,10 +78,12 @@ std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHand
       last_pen_ = lift;
       on_pen(lift);
     }
-    pen_was_connected_ = connected;
+    if (!backlog_) pen_was_connected_ = connected;
   }
   platform::SwitchEvent switch_event;
-  while (devices_.switches->Pop(switch_event)) {
+  int switch_events = 0;
+  while (switch_events < kSwitchEventsPerStep && devices_.switches->Pop(switch_event)) {
+    ++switch_events;
     if (switch_event.input == platform::kRecordInput) {
       record_down_ = switch_event.pressed;
       engine_->OnRecordButton(switch_event.time_ns, switch_event.pressed);
@@ -84,6 +91,7 @@ std::vector<SessionAction> KioskControl::Step(std::int64_t now_ns, const PenHand
       engine_->OnToken(switch_event.time_ns, selector_.Selected());
     }
   }
+  if (switch_events == kSwitchEventsPerStep) backlog_ = true;
   auto actions = engine_->Tick(now_ns);
   if (!actions.empty()) LogSessionActions(*log_, *engine_, actions);
   devices_.output->Poll(now_ns);

@@ -12,6 +12,12 @@
 // counters) -> audio Poll (lost device: silent, reopened with back-off) -> the engine is told
 // whether a callback runs, and whether the microphone still delivers. Session actions come back to
 // the caller and are logged here, one journal line per visible step.
+//
+// A Step takes at most kPenReadingsPerStep pen readings and kSwitchEventsPerStep switch events;
+// the rest stay queued, in order with their own timestamps, for the next Step (Backlog() says
+// so, and the loop then does not sleep). A queue that filled up before the loop ran (input
+// arriving while a slow machine starts) is thus worked off over a few passes instead of in one
+// long pass that keeps the frame and the watchdog's ping waiting.
 
 #include <cstdint>
 #include <functional>
@@ -58,6 +64,15 @@ struct KioskDevices {
 
 class KioskControl {
  public:
+  // A pass normally finds a handful of readings (a tablet reports at 100-300 Hz, the loop runs
+  // at the display's 60 Hz or faster): 64 leaves over ten times that in hand, so a full pen queue
+  // (1024) drains in 16 passes, while one pass's pen work stays a fixed, small amount even where
+  // each reading costs milliseconds (an emulated machine).
+  static constexpr int kPenReadingsPerStep = 64;
+  // Token switches change a few times a minute; each event may switch the texture. A queue full
+  // of them (a bouncing contact at start) is worked off 16 at a time.
+  static constexpr int kSwitchEventsPerStep = 16;
+
   // Receives every pen reading (and the synthesised lift); the live kiosk hands it to the view
   // and the engine, tests to the engine.
   using PenHandler = std::function<void(const platform::PenReading&)>;
@@ -82,6 +97,9 @@ class KioskControl {
   // Hangup(), SIGUSR1 -> ReportStatus(). True when SIGTERM/SIGINT asked the loop to end.
   bool HandleSignals();
 
+  // True when the last Step left pen readings or switch events queued (its budget ran out): the
+  // loop should come round again at once instead of waiting for input.
+  bool Backlog() const { return backlog_; }
   bool record_down() const { return record_down_; }
   const platform::TokenSelector& selector() const { return selector_; }
 
@@ -91,6 +109,7 @@ class KioskControl {
   platform::Logger* log_;
   platform::TokenSelector selector_;
   bool record_down_ = false;
+  bool backlog_ = false;
   bool pen_was_connected_ = true;
   platform::PenReading last_pen_{};
 };

@@ -499,21 +499,28 @@ void KioskWindow::set_staff_panel_open(bool open) {
   impl_->staff_open = open;
 }
 
-std::vector<UiEvent> KioskWindow::PollEvents(int wait_ms) {
+std::vector<UiEvent> KioskWindow::PollEvents(int wait_ms, std::size_t max_sdl_events) {
   Impl& m = *impl_;
   std::vector<UiEvent> out;
   if (!m.window) return out;
   SDL_Event ev;
-  if (wait_ms > 0) {
+  std::size_t taken = 0;
+  if (wait_ms > 0 && max_sdl_events > 0) {
     // Never sleep past the moment a held staff chord completes.
     if (m.chord_held && !m.chord_fired) {
       const double left_ms = m.options.staff_chord.hold_s * 1e3 -
                              static_cast<double>(NowNs() - m.chord_since_ns) * 1e-6;
       wait_ms = std::clamp(static_cast<int>(std::ceil(left_ms)), 1, wait_ms);
     }
-    if (SDL_WaitEventTimeout(&ev, wait_ms) == 1) m.Handle(ev, out);
+    if (SDL_WaitEventTimeout(&ev, wait_ms) == 1) {
+      m.Handle(ev, out);
+      ++taken;
+    }
   }
-  while (SDL_PollEvent(&ev) == 1) m.Handle(ev, out);
+  while (taken < max_sdl_events && SDL_PollEvent(&ev) == 1) {
+    m.Handle(ev, out);
+    ++taken;
+  }
   if (m.chord_held && !m.chord_fired) {
     const std::int64_t now = NowNs();
     if (static_cast<double>(now - m.chord_since_ns) * 1e-9 >= m.options.staff_chord.hold_s) {

@@ -18,6 +18,7 @@
 // overlays as blended rectangles — and presents with vsync, so frames come at the display's
 // refresh rate and only when the caller has one (TextureView::NeedsRedraw).
 
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -70,8 +71,11 @@ class KioskWindow {
   std::string renderer_name() const;
 
   // Drains SDL's queue into UiEvents. With wait_ms > 0 it first sleeps up to that long for an
-  // event (use when no frame is due: an idle kiosk then costs no CPU).
-  std::vector<UiEvent> PollEvents(int wait_ms = 0);
+  // event (use when no frame is due: an idle kiosk then costs no CPU). At most `max_sdl_events`
+  // of SDL's events are taken; the rest wait in SDL's queue with their timestamps for the next
+  // call (which then does not sleep), so a flood of pointer motion cannot make one call long.
+  std::vector<UiEvent> PollEvents(int wait_ms = 0,
+                                  std::size_t max_sdl_events = static_cast<std::size_t>(-1));
 
   // Draws `frame` and presents it (blocks until vblank with vsync). When `read_back` is given the
   // drawn pixels are copied into it before presenting (tests, snapshots of the real path).

@@ -95,6 +95,29 @@ double SupervisedAudioOutput::NextRetryInS(std::int64_t now_ns) const {
   return std::max(0.0, static_cast<double>(next_retry_ns_ - now_ns) * 1e-9);
 }
 
+void SupervisedAudioOutput::LogXruns(const AudioCallbackStats& stats, std::int64_t now_ns) {
+  // Rate-limited: a struggling machine must not flood the journal from the control loop. The
+  // first xrun is said at once; later ones wait for the interval and are summed up in one line.
+  const auto interval_ns = static_cast<std::int64_t>(config_.xrun_log_interval_s * 1e9);
+  if (xrun_logged_ && now_ns - last_xrun_log_ns_ < interval_ns) return;
+  const std::uint64_t count = stats.xruns - xruns_reported_;
+  std::string line = std::to_string(count) + (count == 1 ? " xrun (buffer under/overflow)"
+                                                         : " xruns (buffer under/overflows)");
+  if (xrun_logged_) {
+    line += " in the last " + std::to_string((now_ns - last_xrun_log_ns_) / 1'000'000'000) + " s";
+  }
+  line += "; total " + std::to_string(stats.xruns) + ", slowest callback " +
+          std::to_string(stats.max_callback_ns / 1000) + " us";
+  if (!xrun_logged_) {
+    line += "; more are summed up at most every " +
+            std::to_string(static_cast<long>(config_.xrun_log_interval_s)) + " s";
+  }
+  board_->logger().Warn(key_, line);
+  xruns_reported_ = stats.xruns;
+  xrun_logged_ = true;
+  last_xrun_log_ns_ = now_ns;
+}
+
 void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
   if (stopped_) return;
   if (running_) {
@@ -106,18 +129,7 @@ void SupervisedAudioOutput::Poll(std::int64_t now_ns) {
     }
     const bool stalled =
         now_ns - last_progress_ns_ > static_cast<std::int64_t>(config_.stall_timeout_s * 1e9);
-    if (stats.xruns != xruns_reported_ &&
-        (last_xrun_log_ns_ == 0 ||
-         now_ns - last_xrun_log_ns_ >=
-             static_cast<std::int64_t>(config_.xrun_log_interval_s * 1e9))) {
-      // Rate-limited: a struggling machine must not flood the journal from the control loop.
-      board_->logger().Warn(key_, std::to_string(stats.xruns - xruns_reported_) +
-                                      " xruns (buffer under/overflows); total " +
-                                      std::to_string(stats.xruns) + ", slowest callback " +
-                                      std::to_string(stats.max_callback_ns / 1000) + " us");
-      xruns_reported_ = stats.xruns;
-      last_xrun_log_ns_ = now_ns;
-    }
+    if (stats.xruns != xruns_reported_) LogXruns(stats, now_ns);
     if (backend_->Healthy() && !stalled) return;
     backend_->Abort();
     running_ = false;

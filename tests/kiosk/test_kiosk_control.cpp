@@ -1,9 +1,10 @@
 // The kiosk's control loop body (KioskControl) with the real engine and fake devices: what a
-// SIGHUP does to the usage counters, a tablet plugged in after start; and the process's signal
-// set-up (kiosk_signals.h).
+// SIGHUP does to the usage counters, a tablet plugged in after start, input that piled up before
+// the loop ran (taken a bounded share per pass); and the process's signal set-up (kiosk_signals.h).
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cerrno>
 #include <cmath>
@@ -374,4 +375,74 @@ TEST_CASE(
   REQUIRE(leaning.size() == direct.size());
   CHECK(leaning == direct);
   CHECK(leaning != upright);
+}
+
+TEST_CASE(
+    "control: a flood of pen readings queued before the loop ran is taken at most 64 a pass, in "
+    "order with its own timestamps and none lost, and a tablet unplugged behind it is lifted only "
+    "after its last reading",
+    "[kiosk]") {
+  TabletRig rig(std::make_unique<platform::FakePenSource>(true));
+  std::vector<platform::PenReading> seen;
+  const auto on_pen = [&](const platform::PenReading& r) { seen.push_back(r); };
+  // A tablet at 1 kHz while the kiosk was still starting: a second of readings, tip down.
+  constexpr int kFlood = 1000;
+  const std::int64_t t0 = 1000 * kMs;
+  for (int i = 0; i < kFlood; ++i) {
+    platform::PenReading r;
+    r.time_ns = t0 + i * kMs;
+    r.kind = i == 0 ? platform::PenReadingKind::kTipDown : platform::PenReadingKind::kMotion;
+    r.x_px = 100.0 + 0.5 * i;
+    r.y_px = 300.0;
+    r.tip_down = r.in_proximity = true;
+    r.pressure = 0.5;
+    r.origin = platform::PenOrigin::kTablet;
+    REQUIRE(rig.fake->Push(r));
+  }
+  rig.fake->Unplug(rig.board);  // pulled out with its tip down: no tip-up will come
+
+  std::vector<std::size_t> per_pass;
+  std::int64_t now = t0 + 2000 * kMs;
+  do {
+    const std::size_t before = seen.size();
+    rig.control.Step(now, on_pen);
+    per_pass.push_back(seen.size() - before);
+    now += 16 * kMs;
+  } while (rig.control.Backlog() && per_pass.size() < 100);
+
+  INFO(::Catch::Detail::stringify(per_pass));
+  REQUIRE(per_pass.size() == 16);  // ceil(1000 / 64)
+  CHECK(std::all_of(per_pass.begin(), per_pass.end() - 1, [](std::size_t n) { return n == 64; }));
+  CHECK(per_pass.back() == 40 + 1);  // the rest, and the lift
+  REQUIRE(seen.size() == kFlood + 1);
+  for (int i = 0; i < kFlood; ++i) {
+    INFO("reading " << i);
+    REQUIRE(seen[static_cast<std::size_t>(i)].time_ns == t0 + i * kMs);
+    REQUIRE(seen[static_cast<std::size_t>(i)].tip_down);
+  }
+  const auto& lift = seen.back();
+  CHECK(lift.kind == platform::PenReadingKind::kTipUp);
+  CHECK_FALSE(lift.tip_down);
+  CHECK(lift.time_ns == now - 16 * kMs);  // the pass that took the last reading
+  CHECK(lift.x_px == seen[kFlood - 1].x_px);
+  rig.control.Step(now, on_pen);
+  CHECK(seen.size() == kFlood + 1);  // lifted once
+  CHECK_FALSE(rig.control.Backlog());
+}
+
+TEST_CASE(
+    "control: switch events queued before the loop ran are taken at most 16 a pass, in order, "
+    "the rest at the next pass",
+    "[kiosk]") {
+  TabletRig rig(std::make_unique<platform::FakePenSource>(true));
+  const auto on_pen = [](const platform::PenReading&) {};
+  // Token 1 placed and lifted 8 times, then placed: 17 events.
+  for (int i = 0; i < 17; ++i) REQUIRE(rig.switches.keyboard->OnKey('1', true, (10 + i) * kMs));
+  rig.control.Step(100 * kMs, on_pen);
+  CHECK(rig.control.Backlog());
+  // The 16th event, a lift, was the last one taken.
+  CHECK(rig.control.selector().Selected() == platform::TokenSelector::kDefaultTexture);
+  rig.control.Step(116 * kMs, on_pen);
+  CHECK_FALSE(rig.control.Backlog());
+  CHECK(rig.control.selector().Selected() == 0);
 }

@@ -159,6 +159,72 @@ TEST_CASE("xruns are counted and logged at most once per interval", "[platform]"
   CHECK(output.Running());
 }
 
+TEST_CASE(
+    "xruns on an idle kiosk: one warning at the first, then at most one line a minute with the "
+    "count since the last line, every xrun counted once",
+    "[platform]") {
+  FakeAudioStreamBackend::Shared device;
+  RampRenderer renderer;
+  Logger logger;
+  logger.SetEchoToStderr(false);
+  DeviceStatusBoard board(logger);
+  SupervisedAudioOutput output(std::make_unique<FakeAudioStreamBackend>(device), renderer,
+                               AudioOutputConfig{}, board);  // the kiosk's own settings
+  REQUIRE(output.Start());
+  const auto lines0 = logger.Count();
+  // What the struggling card did: 30 xruns a second (300 per 10 s) for ten minutes, the loop
+  // polling every 100 ms on a fake clock; then a quiet minute.
+  std::int64_t now = 5'000 * kMs;
+  const auto poll_for = [&](int seconds, int xruns_per_poll) {
+    for (int i = 0; i < seconds * 10; ++i) {
+      FakeAudioStreamBackend::Pump(device, xruns_per_poll, true);
+      FakeAudioStreamBackend::Pump(device, 1);
+      device.played.clear();
+      output.Poll(now += 100 * kMs);
+    }
+  };
+  poll_for(600, 3);
+  poll_for(61, 0);
+  const std::uint64_t total = 600 * 10 * 3;
+  REQUIRE(output.Stats().xruns == total);
+  CHECK(board.Get("audio_out").events == total);
+
+  std::vector<LogLine> lines = logger.Recent();
+  lines.erase(lines.begin(), lines.end() - static_cast<std::ptrdiff_t>(logger.Count() - lines0));
+  INFO(::Catch::Detail::stringify(logger.Count() - lines0) << " lines");
+  // The first at once, then one a minute: at 0.1 s, 60.1 s, ..., 600.1 s (the rest, after the
+  // xruns stopped).
+  REQUIRE(lines.size() == 11);
+  CHECK(lines[0].Text().rfind("warn audio_out: 3 xruns (buffer under/overflows); total 3,", 0) ==
+        0);
+  CHECK_THAT(lines[0].message, Catch::EndsWith("more are summed up at most every 60 s"));
+  std::uint64_t said = 0;
+  for (const auto& line : lines) {
+    INFO(line.Text());
+    CHECK(line.level == LogLevel::kWarn);
+    said += std::stoull(line.message);
+  }
+  CHECK(said == total);  // nothing counted twice, nothing left out
+  for (std::size_t i = 1; i + 1 < lines.size(); ++i) {
+    INFO(lines[i].Text());
+    CHECK_THAT(lines[i].message, Catch::StartsWith("1800 xruns (buffer under/overflows) in the "
+                                                   "last 60 s; total " +
+                                                   std::to_string(3 + 1800 * i) + ","));
+  }
+  CHECK_THAT(lines.back().message,  // from 540.1 s to the end of the xruns at 600 s
+             Catch::StartsWith("1797 xruns (buffer under/overflows) in the last 60 s; total " +
+                               std::to_string(total) + ","));
+
+  // A single xrun after a long quiet spell (the last line was at 600.1 s, this is at 901.2 s) is
+  // said at once, in the singular.
+  poll_for(240, 0);
+  FakeAudioStreamBackend::Pump(device, 1, true);
+  output.Poll(now += 100 * kMs);
+  REQUIRE(logger.Count() == lines0 + 12);
+  CHECK_THAT(logger.Recent().back().Text(),
+             Catch::StartsWith("warn audio_out: 1 xrun (buffer under/overflow) in the last 301 s"));
+}
+
 TEST_CASE("a stalled device (no callbacks) counts as lost", "[platform]") {
   FakeAudioStreamBackend::Shared device;
   RampRenderer renderer;

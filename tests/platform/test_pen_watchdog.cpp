@@ -1,17 +1,13 @@
 // Pen source (fake tablet present/absent, plugged in later, unplugged and back; the libinput
 // source on this machine) and the systemd watchdog, checked on a datagram socket the test owns
 // (NOTIFY_SOCKET).
-#include <sys/socket.h>
-#include <sys/un.h>
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cstdlib>
 
 #include "platform/common/clock.h"
 #include "platform/pen/pen_source.h"
 #include "platform/watchdog/watchdog.h"
-#include "support/temp_dir.h"
+#include "support/notify_socket.h"
 
 using namespace sas::platform;
 
@@ -150,44 +146,7 @@ TEST_CASE(
   CHECK(logger.Recent().back().Text() == "info pen: ok: pen tablet 'fake tablet' back");
 }
 
-namespace {
-
-// A datagram socket standing in for systemd's notify socket.
-class NotifySocket {
- public:
-  NotifySocket() {
-    path_ = dir_.file("notify.sock");
-    fd_ = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-    REQUIRE(fd_ >= 0);
-    sockaddr_un addr{};
-    addr.sun_family = AF_UNIX;
-    REQUIRE(path_.size() < sizeof addr.sun_path);
-    std::copy(path_.begin(), path_.end(), addr.sun_path);
-    REQUIRE(bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
-    setenv("NOTIFY_SOCKET", path_.c_str(), 1);
-  }
-  ~NotifySocket() {
-    unsetenv("NOTIFY_SOCKET");
-    close(fd_);
-  }
-  std::vector<std::string> Drain() {
-    std::vector<std::string> out;
-    char buf[4096];
-    for (;;) {
-      const ssize_t n = recv(fd_, buf, sizeof buf, 0);
-      if (n <= 0) break;
-      out.emplace_back(buf, static_cast<std::size_t>(n));
-    }
-    return out;
-  }
-
- private:
-  sas::test::TempDir dir_;
-  std::string path_;
-  int fd_ = -1;
-};
-
-}  // namespace
+using sas::test::NotifySocket;
 
 TEST_CASE("watchdog pings only while audio and input heartbeats are recent", "[platform]") {
   NotifySocket socket;

@@ -311,6 +311,31 @@ TEST_CASE(
   CHECK(events[2].kind == UiEvent::Kind::kPointerUp);
 }
 
+TEST_CASE(
+    "a flood of pointer motion is taken a bounded number of SDL events per poll, the rest in "
+    "order at the next polls",
+    "[render]") {
+  OffscreenDriver driver;
+  KioskWindow window;
+  OpenSettled(window);
+  for (int x = 0; x < 150; ++x) PushMouseMotion(x, 40);
+  std::vector<std::vector<UiEvent>> polls;
+  for (int i = 0; i < 3; ++i) polls.push_back(window.PollEvents(i == 0 ? 0 : 5, 64));
+  REQUIRE(polls[0].size() == 64);
+  REQUIRE(polls[1].size() == 64);
+  REQUIRE(polls[2].size() == 22);
+  int x = 0;
+  std::int64_t last_ns = 0;
+  for (const auto& poll : polls) {
+    for (const auto& e : poll) {
+      CHECK(e.stylus.x_px == static_cast<float>(x++));
+      CHECK(e.time_ns >= last_ns);
+      last_ns = e.time_ns;
+    }
+  }
+  CHECK(window.PollEvents().empty());
+}
+
 TEST_CASE("keys 1-4 and 0 stand in for the tokens and R for the record button", "[render]") {
   OffscreenDriver driver;
   KioskWindow window;
