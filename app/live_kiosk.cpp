@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -231,13 +232,37 @@ class LiveLoop {
       ShowPassiveStroke(now_ns);
       FollowStaffPanel();
       AdaptToAmbient(now_s);
+      const std::int64_t draw_start_ns = platform::MonotonicNowNs();
       Draw(now_s);
       if (ready_) p_.watchdog.Tick(now_ns);  // pings follow READY=1, never precede it
-      if (p_.backends.on_pass) p_.backends.on_pass(pass_start_ns, platform::MonotonicNowNs());
+      const std::int64_t end_ns = platform::MonotonicNowNs();
+      NoteSlowPass(pass_start_ns, draw_start_ns, end_ns);
+      if (p_.backends.on_pass) p_.backends.on_pass(pass_start_ns, end_ns);
     }
   }
 
  private:
+  // A pass slower than this holds the watchdog's ping back long enough to matter (the unit's
+  // WatchdogSec is 10 s); staff and installers learn it from the journal before systemd kills
+  // the kiosk for it: one warning at most a minute, with how many there were since the last.
+  static constexpr std::int64_t kSlowPassNs = 2'000 * platform::kNsPerMs;
+  static constexpr std::int64_t kSlowPassReportNs = 60'000 * platform::kNsPerMs;
+
+  void NoteSlowPass(std::int64_t start_ns, std::int64_t draw_start_ns, std::int64_t end_ns) {
+    if (end_ns - start_ns <= kSlowPassNs) return;
+    ++slow_passes_;
+    if (slow_reported_ns_ != 0 && end_ns - slow_reported_ns_ < kSlowPassReportNs) return;
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "a loop pass took %.1f s (drawing %.1f s); %d such since the last report; "
+                  "systemd's watchdog is fed once a pass",
+                  static_cast<double>(end_ns - start_ns) * 1e-9,
+                  static_cast<double>(end_ns - draw_start_ns) * 1e-9, slow_passes_);
+    p_.log.Warn("kiosk", line);
+    slow_reported_ns_ = end_ns;
+    slow_passes_ = 0;
+  }
+
   // SDL events one pass takes at most: like the pen's budget (KioskControl), many times what a
   // mouse or touch screen sends in a frame, and a bounded amount of work.
   static constexpr std::size_t kSdlEventsPerPass = 64;
@@ -391,6 +416,8 @@ class LiveLoop {
   double ambient_last_s_ = -1.0;
   bool passive_shown_ = false;  // the view is drawing the passive stroke's dent
   bool ready_ = false;          // the first frame was presented and announced
+  int slow_passes_ = 0;         // passes over kSlowPassNs since the last report
+  std::int64_t slow_reported_ns_ = 0;
 };
 
 }  // namespace
@@ -450,6 +477,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
                               log);
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   WatchDeviceThreads(watchdog, devices);
+  watchdog.ReportTo(&log);
 
   LiveLoop({config, kiosk::ConfigStatusLine(options.config_path, loaded), window, *engine, *view,
             devices, control, board, watchdog, log, backends, out})

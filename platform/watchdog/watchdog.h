@@ -15,6 +15,8 @@
 
 namespace sas::platform {
 
+class Logger;
+
 class WatchdogSupervisor {
  public:
   static constexpr std::int64_t kExempt = -1;
@@ -25,6 +27,10 @@ class WatchdogSupervisor {
 
   // `heartbeat_ns` returns the CLOCK_MONOTONIC time of the thread's last sign of life, or kExempt.
   void Watch(std::string name, std::function<std::int64_t()> heartbeat_ns);
+
+  // A withheld ping is also a journal warning naming the threads and how long they have been
+  // silent (systemd's own line says only "Watchdog timeout"), and their return an info line.
+  void ReportTo(Logger* log) { log_ = log; }
 
   void Ready(const std::string& status);
   // Control loop: pings when every heartbeat is recent; otherwise sends one STATUS= naming the
@@ -41,7 +47,10 @@ class WatchdogSupervisor {
   std::int64_t max_age_ns_;
   SystemdNotifier notifier_;
   std::vector<Watched> watched_;
+  std::string Describe(std::int64_t now_ns) const;  // "audio (3.1 s), pen (2.2 s)"
+
   std::string last_stalled_ = "\x01";  // "unknown": the first Tick always sends a STATUS
+  Logger* log_ = nullptr;
 };
 
 }  // namespace sas::platform

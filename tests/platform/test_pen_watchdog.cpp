@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "platform/common/clock.h"
+#include "platform/log/log.h"
 #include "platform/pen/pen_source.h"
 #include "platform/watchdog/watchdog.h"
 #include "support/notify_socket.h"
@@ -190,4 +191,37 @@ TEST_CASE("watchdog is a silent no-op without NOTIFY_SOCKET", "[platform]") {
   watchdog.Ready("up");
   CHECK(watchdog.Tick(MonotonicNowNs()));
   CHECK_FALSE(SystemdNotifier{}.UnderSystemd());
+}
+
+TEST_CASE("a withheld watchdog ping is a journal warning naming the silent thread and its age",
+          "[platform]") {
+  NotifySocket socket;
+  constexpr std::int64_t kMs = 1'000'000;
+  Logger log;
+  log.SetEchoToStderr(false);
+  std::int64_t audio_beat = 0;
+  WatchdogSupervisor watchdog(2'000 * kMs);
+  watchdog.ReportTo(&log);
+  watchdog.Watch("audio", [&] { return audio_beat; });
+  watchdog.Watch("pen", [] { return WatchdogSupervisor::kExempt; });
+  const std::int64_t now = 100'000 * kMs;
+  audio_beat = now - 10 * kMs;
+  CHECK(watchdog.Tick(now));
+  CHECK(log.Count() == 0);  // a first healthy tick says nothing
+
+  CHECK_FALSE(watchdog.Tick(now + 3'500 * kMs));
+  CHECK_FALSE(watchdog.Tick(now + 4'000 * kMs));  // not repeated while nothing changes
+  auto lines = log.Recent();
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].level == LogLevel::kWarn);
+  CHECK(lines[0].component == "watchdog");
+  CHECK(lines[0].message.find("audio (3.5 s)") != std::string::npos);
+  CHECK(lines[0].message.find("pen") == std::string::npos);  // exempt threads are not named
+
+  audio_beat = now + 4'000 * kMs;
+  CHECK(watchdog.Tick(now + 4'100 * kMs));
+  lines = log.Recent();
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[1].level == LogLevel::kInfo);
+  CHECK(lines[1].message.find("alive again") != std::string::npos);
 }

@@ -31,7 +31,10 @@ now() { cut -d' ' -f1 /proc/uptime; }
 log() { echo "[$(now)] $*"; }
 result() { echo "$*" >>"$out/results.txt"; log "$*"; }
 pass() { result "PASS $*"; }
-fail() { result "FAIL $*"; }
+fail() {  # also what the box said up to here, for whoever looks into the failure
+  result "FAIL $*"
+  journalctl -b -o short-monotonic --no-pager >"$out/journal-at-fail.txt" 2>&1
+}
 judge() {  # judge <check name> <details> <command...>: PASS or FAIL on the command's status
   local name=$1 details=$2
   shift 2
