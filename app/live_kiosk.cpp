@@ -422,6 +422,9 @@ class LiveLoop {
 
 }  // namespace
 
+// What one start-up stage may take before systemd gives up on the start (see RunKiosk).
+constexpr std::uint64_t kStartStageBudgetUs = 90'000'000;
+
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends) {
   KioskArgs options;
@@ -434,6 +437,15 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
+  // The start is judged by its progress, not by its total: each stage done gives systemd's start
+  // timeout (the unit's TimeoutStartSec, 90 s by default) another kStartStageBudgetUs, so a slow
+  // but moving start (a cold SD card, an emulated or busy machine) is not killed, and a stage that
+  // hangs still is.
+  const platform::SystemdNotifier notifier;
+  const auto started = [&notifier](const char* stage) {
+    notifier.Notify("EXTEND_TIMEOUT_USEC=" + std::to_string(kStartStageBudgetUs) +
+                    "\nSTATUS=starting: " + stage);
+  };
   std::error_code dir_error;
   fs::create_directories(options.state_dir, dir_error);
   if (dir_error)
@@ -445,9 +457,11 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   // One journal line now (the kiosk may still fail to open a window), and the staff panel's
   // "config" status: "missing: rejected: <file>:<line>: <key>: <what> (using ...)".
   kiosk::ReportConfig(board, loaded);
+  started("configuration read, opening the display");
 
   ui::KioskWindow window;
   if (!OpenWindow(config, log, window)) return 1;
+  started("display open, loading the textures");
   const int width = window.width_px(), height = window.height_px();
   kiosk::CatchStopSignals();
 
@@ -468,6 +482,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
     return 1;
   }
   engine->SetStatusBoard(&board);
+  started("textures loaded, opening the devices");
   kiosk::ReportTextures(board, *engine);
 
   LiveDevices devices = OpenDevices(config, *engine, board, backends, width, height);
@@ -478,6 +493,7 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   platform::WatchdogSupervisor watchdog(2'000 * platform::kNsPerMs);
   WatchDeviceThreads(watchdog, devices);
   watchdog.ReportTo(&log);
+  started("devices open, drawing the first frame");
 
   LiveLoop({config, kiosk::ConfigStatusLine(options.config_path, loaded), window, *engine, *view,
             devices, control, board, watchdog, log, backends, out})

@@ -107,7 +107,7 @@ std::string ReadAll(std::FILE* file) {
 TEST_CASE(
     "live kiosk: READY=1 and the 'kiosk ready' line come only after the first frame is on the "
     "screen, and a full pen queue at start is worked off over many passes, the first watchdog "
-    "ping not waiting for it",
+    "ping not waiting for it, and the start reports each stage to systemd",
     "[kiosk]") {
   setenv("SDL_VIDEODRIVER", "offscreen", 1);
   test::TempDir dir;
@@ -183,6 +183,20 @@ TEST_CASE(
   CHECK(ping > ready);
   CHECK(out_bytes_at_first_frame == 0);
   CHECK_THAT(printed, Catch::StartsWith("kiosk ready "));
+  // The start reported its progress, each stage extending systemd's start timeout, all before the
+  // first frame: the stages in order, and nothing else extends it.
+  std::vector<std::string> stages;
+  for (std::size_t i = 0; i < frame; ++i) {
+    const std::string& entry = timeline.entries[i];
+    if (entry.rfind("EXTEND_TIMEOUT_USEC=90000000\nSTATUS=starting: ", 0) == 0)
+      stages.push_back(entry.substr(entry.find(": ") + 2));
+  }
+  CHECK(stages == std::vector<std::string>{"configuration read, opening the display",
+                                           "display open, loading the textures",
+                                           "textures loaded, opening the devices",
+                                           "devices open, drawing the first frame"});
+  for (std::size_t i = frame; i < timeline.entries.size(); ++i)
+    CHECK(timeline.entries[i].find("EXTEND_TIMEOUT_USEC") == std::string::npos);
 
   // Every pass took at most its budget of the flood, the first one included ...
   std::vector<std::size_t> queued;  // at the end of each pass
