@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "files/kiosk_config.h"
 #include "headless_demo.h"
+#include "kiosk/device_configs.h"
 #include "live_kiosk.h"
 #include "platform/discovery.h"
 #include "sas/version.h"
@@ -41,9 +43,20 @@ int RunDemo(const Args& args) {
   return sas::app::RunHeadlessDemo(options, stdout, stderr);
 }
 
-// Prints every device class, found or not, and says what the kiosk will do without it.
-void PrintDeviceReport(const sas::ui::DisplayInfo& display) {
-  auto report = sas::platform::DiscoverDevices();
+// Prints every device class, found or not, and says what the kiosk will do without it, with the
+// device choices of the configuration at `config_path` (the built-in ones when it cannot be used,
+// which the report then says).
+void PrintDeviceReport(const sas::ui::DisplayInfo& display, const std::string& config_path) {
+  sas::platform::DeviceSelection selection;
+  sas::platform::DeviceFinding config{"config", true, config_path};
+  try {
+    selection = sas::kiosk::DeviceSelectionFor(sas::kiosk::LoadKioskConfig(config_path));
+  } catch (const sas::kiosk::ConfigError& error) {
+    config = {"config", false,
+              std::string(error.what()) + " -- the devices below are for the built-in defaults"};
+  }
+  auto report = sas::platform::DiscoverDevices(selection);
+  report.insert(report.begin(), config);
   if (display.available) {
     report.insert(report.begin(), {"display", true,
                                    display.driver + " " + std::to_string(display.width_px) + "x" +
@@ -64,6 +77,7 @@ int RunDefault(const Args& args) {
   sas::app::HeadlessOptions options;
   bool version = false;
   bool list_devices = false;
+  std::string config_path = "/etc/sketch-a-scratch/kiosk.toml";
   CLI::App app(
       "Sketch-a-Scratch: with no command, the kiosk on the display, or with no display "
       "the headless visit (--out, --quick shape it).",
@@ -72,7 +86,11 @@ int RunDefault(const Args& args) {
   sas::app::AddHeadlessOptions(app, options);
   app.add_flag("--version", version, "print the version");
   app.add_flag("--list-devices", list_devices,
-               "print the display, audio devices, GPIO chips, USB adapters and tablets found");
+               "print the display, audio devices, GPIO chips, USB adapters and tablets found, and "
+               "which the kiosk would use with its configuration");
+  app.add_option("--config", config_path,
+                 "the kiosk's configuration file, for --list-devices and the kiosk (default "
+                 "/etc/sketch-a-scratch/kiosk.toml)");
   if (const int code = sas::kiosk::ParseCommandLine(app, args, stdout, stderr); code >= 0) {
     return code;
   }
@@ -81,16 +99,16 @@ int RunDefault(const Args& args) {
     return kExitOk;
   }
   if (list_devices) {
-    PrintDeviceReport(sas::ui::ProbeDisplay());
+    PrintDeviceReport(sas::ui::ProbeDisplay(), config_path);
     return kExitOk;
   }
   std::printf("Sketch-a-Scratch %s\n", sas::kVersion);
   const auto display = sas::ui::ProbeDisplay();
   std::printf("Hardware:\n");
-  PrintDeviceReport(display);
+  PrintDeviceReport(display, config_path);
   std::fflush(stdout);
   // --out/--quick only shape the headless visit: the kiosk on a display takes its configuration.
-  if (display.available) return sas::app::RunKiosk({}, stdout, stderr);
+  if (display.available) return sas::app::RunKiosk({"--config", config_path}, stdout, stderr);
   std::printf("No display (%s).\n", display.problem.c_str());
   return sas::app::RunHeadlessDemo(options, stdout, stderr);
 }

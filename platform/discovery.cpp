@@ -62,28 +62,7 @@ DeviceReport DiscoverDevices(const DeviceSelection& selection) {
   AddAudioUse(report, audio, selection.audio_output, true);
   AddAudioUse(report, audio, selection.audio_input, false);
 
-  const auto chips = ListGpioChips();
-  const bool chip_found = std::any_of(chips.begin(), chips.end(), [&](const GpioChipInfo& c) {
-    return c.name == selection.gpio_chip || c.label == selection.gpio_chip ||
-           "/dev/" + c.name == selection.gpio_chip;
-  });
-  const auto adapters = ListMcp2221Adapters();
-  const std::string& backend = selection.switches_backend;
-  std::string switches;
-  bool switches_ok = true;
-  if ((backend == "gpio" || backend == "auto") && chip_found) {
-    switches = "GPIO " + selection.gpio_chip + " lines " + selection.gpio_lines +
-               " (tokens 1-4, record), debounce 30 ms";
-  } else if ((backend == "mcp2221" || backend == "auto") && !adapters.empty()) {
-    switches = "MCP2221A " + adapters.front().path + " GP0-3, record on key R";
-  } else {
-    switches_ok = backend == "keyboard";
-    switches = "keys 1-4 (toggle tokens) and R (record)";
-    if (!switches_ok)
-      switches +=
-          " -- no " + (backend == "auto" ? std::string("GPIO chip or USB adapter") : backend);
-  }
-  report.push_back({"use", switches_ok, "token switches: " + switches});
+  report.push_back(SwitchesUse(selection, ListGpioChips(), ListMcp2221Adapters()));
 
   const auto tablets = ListTablets();
   const auto tablet = std::find_if(tablets.begin(), tablets.end(), [&](const TabletInfo& t) {
@@ -98,6 +77,44 @@ DeviceReport DiscoverDevices(const DeviceSelection& selection) {
 
 DeviceReport DiscoverDevices() {
   return DiscoverDevices(DeviceSelection{});
+}
+
+DeviceFinding SwitchesUse(const DeviceSelection& selection, const std::vector<GpioChipInfo>& chips,
+                          const std::vector<HidDeviceInfo>& adapters) {
+  const std::string& backend = selection.switches_backend;
+  const bool want_gpio = backend == "gpio" || backend == "auto";
+  const bool want_hid = backend == "mcp2221" || backend == "auto";
+  // Why the configured chip, which is there, will not be used: the lines it lacks.
+  std::string gpio_problem;
+  if (want_gpio) {
+    if (const GpioChipInfo* chip = FindGpioChip(chips, selection.gpio_chip)) {
+      const auto missing = MissingGpioLines(*chip, selection.gpio_lines);
+      if (missing.empty()) {
+        std::string lines;
+        for (const auto& line : selection.gpio_lines) {
+          if (!line.empty()) lines += (lines.empty() ? "" : ",") + line;
+        }
+        return {"use", true,
+                "token switches: GPIO " + selection.gpio_chip + " lines " + lines +
+                    " (tokens 1-4, record), debounce " +
+                    std::to_string(selection.switches_debounce_ms) + " ms"};
+      }
+      gpio_problem = "GPIO " + DescribeMissingGpioLines(*chip, missing);
+    }
+  }
+  std::string used;
+  bool ok = gpio_problem.empty();
+  if (want_hid && !adapters.empty()) {
+    used = "MCP2221A " + adapters.front().path + " GP0-3, record on key R";
+  } else {
+    used = "keys 1-4 (toggle tokens) and R (record)";
+    ok = ok && backend == "keyboard";
+    if (gpio_problem.empty() && backend != "keyboard") {
+      used += " -- no " + (backend == "auto" ? std::string("GPIO chip or USB adapter") : backend);
+    }
+  }
+  return {"use", ok,
+          "token switches: " + (gpio_problem.empty() ? used : gpio_problem + "; using " + used)};
 }
 
 }  // namespace sas::platform

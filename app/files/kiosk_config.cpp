@@ -259,8 +259,15 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
 
 namespace {
 
+std::string TooLarge(const std::string& path, const std::string& bytes) {
+  return path + ": too large for a configuration file (" + bytes + " bytes; the limit is " +
+         std::to_string(kMaxConfigFileBytes / 1024) + " KiB)";
+}
+
 // A directory (or a device, a FIFO) opens and reads as an empty, valid file through ifstream; it
 // would then replace the last good copy with 0 bytes. Only a regular file is a configuration.
+// One over kMaxConfigFileBytes is refused by its size before any of it is read, and the read
+// itself stops there (a file still growing).
 std::string ReadConfigText(const std::string& path) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
@@ -270,12 +277,22 @@ std::string ReadConfigText(const std::string& path) {
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     throw ConfigError(path + ": not a regular file");
   }
+  if (const auto size = std::filesystem::file_size(path, error);
+      !error && size > kMaxConfigFileBytes) {
+    throw ConfigError(TooLarge(path, std::to_string(size)));
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) throw ConfigError(path + ": cannot open configuration file");
-  std::ostringstream text;
-  text << file.rdbuf();
+  std::string text;
+  char chunk[16 * 1024];
+  while (file.read(chunk, sizeof chunk) || file.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(file.gcount()));
+    if (text.size() > kMaxConfigFileBytes) {
+      throw ConfigError(TooLarge(path, "over " + std::to_string(kMaxConfigFileBytes)));
+    }
+  }
   if (file.bad()) throw ConfigError(path + ": cannot read configuration file");
-  return text.str();
+  return text;
 }
 
 }  // namespace

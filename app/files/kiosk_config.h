@@ -3,6 +3,7 @@
 // optional and has a built-in default; a key we do not know, a wrong type or a value out of range
 // is an error naming the file, line and key, and nothing of a bad file is applied.
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -80,7 +81,15 @@ struct KioskConfig {
   double staff_panel_timeout_s = 300.0;
 };
 
-// Parses `path`. Throws ConfigError ("<file>:<line>: <key>: <what>") on any problem.
+// The largest configuration file read. The shipped kiosk.toml is a few kB with every key and
+// its comment; 1 MiB is hundreds of times that and still parses in a fraction of a second. A
+// larger file is something else saved over it (a log, an image, a runaway script): refused before
+// it is read, where a 100 MB one took 18 s to parse at start and was then copied whole to the
+// last good one.
+inline constexpr std::uintmax_t kMaxConfigFileBytes = 1024 * 1024;
+
+// Parses `path`. Throws ConfigError ("<file>:<line>: <key>: <what>") on any problem, and for a
+// file over kMaxConfigFileBytes ("<file>: too large for a configuration file (...)").
 KioskConfig LoadKioskConfig(const std::string& path);
 // Same, from text already in memory; `source_name` is used in messages.
 KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_name);

@@ -49,4 +49,17 @@ platform::PenConfig PenConfigFor(const KioskConfig& config, int screen_width_px,
           .device_name_contains = config.pen_device};
 }
 
+platform::DeviceSelection DeviceSelectionFor(const KioskConfig& config) {
+  platform::DeviceSelection selection;
+  selection.audio_output = config.output_device;
+  selection.audio_input = config.input_device;
+  const platform::SwitchesConfig switches = SwitchesConfigFor(config);
+  selection.switches_backend = switches.backend;
+  selection.gpio_chip = switches.gpio.chip;
+  selection.gpio_lines = switches.gpio.lines;
+  selection.switches_debounce_ms = config.switches_debounce_ms;
+  selection.pen_device = config.pen_device;
+  return selection;
+}
+
 }  // namespace sas::kiosk

@@ -19,26 +19,24 @@ bool IsOffset(const std::string& spec) {
                                       [](unsigned char c) { return std::isdigit(c) != 0; });
 }
 
+// What a configuration can name on the opened chip: its size and its lines' names.
+GpioChipInfo InfoOf(const gpiod::chip& chip) {
+  GpioChipInfo info{chip.name(), chip.label(), chip.num_lines(), {}};
+  for (unsigned offset = 0; offset < chip.num_lines(); ++offset)
+    info.line_names.push_back(chip.get_line(offset).name());
+  return info;
+}
+
 class LibgpiodEventSource final : public GpioEventSource {
  public:
   explicit LibgpiodEventSource(const GpioSwitchConfig& config)
       : chip_(config.chip, gpiod::chip::OPEN_LOOKUP) {
     if (!chip_) throw std::runtime_error("GPIO chip '" + config.chip + "' not found");
-    std::vector<unsigned> offsets;
+    // Resolved against this chip object, so all lines belong to one chip (one request), and
+    // every line it lacks is named at once rather than libgpiod's first out_of_range.
+    const std::vector<unsigned> offsets = ResolveGpioLines(InfoOf(chip_), config);
     for (int i = 0; i < kSwitchInputCount; ++i) {
-      const std::string& spec = config.lines[static_cast<std::size_t>(i)];
-      if (spec.empty()) continue;
-      unsigned offset = 0;
-      if (IsOffset(spec)) {
-        offset = static_cast<unsigned>(std::stoul(spec));
-      } else {
-        // Resolved on this chip object, so all lines belong to one chip (one request).
-        gpiod::line line = chip_.find_line(spec);
-        if (!line) throw std::runtime_error("GPIO line '" + spec + "' not on " + chip_.name());
-        offset = line.offset();
-      }
-      offsets.push_back(offset);
-      inputs_.push_back(i);
+      if (!config.lines[static_cast<std::size_t>(i)].empty()) inputs_.push_back(i);
     }
     bulk_ = chip_.get_lines(offsets);
     bulk_.request({"sketch-a-scratch", gpiod::line_request::EVENT_BOTH_EDGES,
@@ -89,6 +87,22 @@ class LibgpiodEventSource final : public GpioEventSource {
 
 }  // namespace
 
+std::vector<unsigned> ResolveGpioLines(const GpioChipInfo& chip, const GpioSwitchConfig& config) {
+  const auto missing = MissingGpioLines(chip, config.lines);
+  if (!missing.empty()) throw GpioLinesMissing(DescribeMissingGpioLines(chip, missing));
+  std::vector<unsigned> offsets;
+  for (const std::string& spec : config.lines) {
+    if (spec.empty()) continue;
+    if (IsOffset(spec)) {
+      offsets.push_back(static_cast<unsigned>(std::stoul(spec)));
+    } else {
+      const auto it = std::find(chip.line_names.begin(), chip.line_names.end(), spec);
+      offsets.push_back(static_cast<unsigned>(it - chip.line_names.begin()));
+    }
+  }
+  return offsets;
+}
+
 std::unique_ptr<GpioEventSource> MakeLibgpiodEventSource(const GpioSwitchConfig& config) {
   return std::make_unique<LibgpiodEventSource>(config);
 }
@@ -109,10 +123,15 @@ GpioSwitchInput::~GpioSwitchInput() {
 
 bool GpioSwitchInput::Start(std::string* error) {
   Stop();
+  lines_missing_ = false;
   if (!source_) {
     try {
       source_ = factory_ ? factory_() : MakeLibgpiodEventSource(config_);
       if (!source_) throw std::runtime_error("GPIO lines unavailable");
+    } catch (const GpioLinesMissing& e) {
+      lines_missing_ = true;
+      if (error) *error = e.what();
+      return false;
     } catch (const std::exception& e) {
       if (error) *error = e.what();
       return false;

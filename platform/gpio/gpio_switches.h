@@ -17,12 +17,14 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "platform/common/wake_event.h"
 #include "platform/device_status.h"
+#include "platform/gpio/gpio_chips.h"
 #include "platform/input/debouncer.h"
 #include "platform/input/switch_input.h"
 
@@ -55,7 +57,19 @@ class GpioEventSource {
   virtual std::string Describe() const = 0;
 };
 
-// Set-up: throws std::system_error / std::runtime_error when the chip or a line is missing.
+// The configured chip is there but lacks configured lines: a mistake in the configuration (or a
+// chip other than the one it was written for), not a device that is absent.
+class GpioLinesMissing : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The offsets of the configured lines on `chip`, in input order (empty entries left out). Throws
+// GpioLinesMissing naming every line the chip lacks (DescribeMissingGpioLines).
+std::vector<unsigned> ResolveGpioLines(const GpioChipInfo& chip, const GpioSwitchConfig& config);
+
+// Set-up: throws std::system_error / std::runtime_error when the chip is missing, and
+// GpioLinesMissing when it lacks a configured line.
 std::unique_ptr<GpioEventSource> MakeLibgpiodEventSource(const GpioSwitchConfig& config);
 
 // The event-processing unit: raw edges in timestamp order -> debounced SwitchEvents.
@@ -108,6 +122,9 @@ class GpioSwitchInput final : public SwitchInput {
 
   // True while the lines are lost (after a failure, until they are opened again).
   bool lost() const { return lost_.load(std::memory_order_acquire); }
+  // True when Start failed because the chip lacks configured lines (GpioLinesMissing): the
+  // configuration is wrong, which deserves a warning even when another backend takes over.
+  bool lines_missing() const { return lines_missing_; }
 
  private:
   void Run();
@@ -124,6 +141,7 @@ class GpioSwitchInput final : public SwitchInput {
   DeviceStatusBoard* board_ = nullptr;
   std::string describe_;
   std::atomic<bool> lost_{false};
+  bool lines_missing_ = false;
   GpioEdgeProcessor processor_;
   std::array<bool, kSwitchInputCount> initial_{};
   WakeEvent stop_;

@@ -6,7 +6,10 @@
 //                        and the adapter is used as soon as it is plugged in (status "ok")
 //   backend = "auto"     gpio if the chip opens, else the adapter if present, else keyboard
 //   backend = "keyboard" keys only
-// Status key "switches".
+// Status key "switches". A chip that is there but lacks a configured line is a configuration
+// mistake: a warning naming the chip, the lines it lacks and what is used instead (the adapter or
+// the keys), whichever backend takes over; a chip that is simply absent is not (with "auto", a PC
+// without a GPIO header is a normal set-up).
 
 #include <memory>
 #include <string>
@@ -35,9 +38,12 @@ struct SwitchInputs {
 };
 
 // Set-up (control thread). Never throws for a missing device: that is a fallback, not an error.
-// `gpio_source` / `hid_opener` default to the real devices; tests inject fakes.
+// `gpio_source` / `hid_opener` default to the real devices; tests inject fakes. `gpio_factory`,
+// when set, builds the GPIO lines' source in place of libgpiod (when `gpio_source` is null, and
+// again after a loss); it may throw as MakeLibgpiodEventSource does.
 SwitchInputs OpenSwitchInputs(const SwitchesConfig& config, DeviceStatusBoard& board,
                               std::unique_ptr<GpioEventSource> gpio_source = nullptr,
-                              HidOpener hid_opener = nullptr);
+                              HidOpener hid_opener = nullptr,
+                              GpioSwitchInput::SourceFactory gpio_factory = nullptr);
 
 }  // namespace sas::platform

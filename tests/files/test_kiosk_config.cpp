@@ -2,6 +2,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
 
 #include "files/kiosk_config.h"
 #include "levels/output_gains.h"
@@ -194,6 +199,85 @@ TEST_CASE("a bad configuration falls back to the last good one, else to the defa
   CHECK(result.source == Source::kLastGood);
   CHECK(result.config.sound_gain_db == 20.0);
   CHECK_THAT(result.problem, Catch::Contains("kiosk.toml:3") && Catch::Contains("last good"));
+}
+
+namespace {
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Bytes this process has read through read() so far (/proc/self/io "rchar").
+std::uint64_t BytesRead() {
+  std::ifstream io("/proc/self/io");
+  std::string key;
+  std::uint64_t value = 0;
+  while (io >> key >> value) {
+    if (key == "rchar:") return value;
+  }
+  FAIL("no rchar in /proc/self/io");
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a configuration file over 1 MiB is refused with the rejected file's fallback, and is not "
+    "kept as the last good one; one of exactly 1 MiB still loads",
+    "[kiosk]") {
+  using sas::kiosk::kMaxConfigFileBytes;
+  using Source = sas::kiosk::ConfigLoadResult::Source;
+  sas::test::TempDir dir;
+  const auto path = dir.file("kiosk.toml");
+  const auto last_good = dir.file("last-good.toml");
+  dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 20\n");
+  REQUIRE(sas::kiosk::LoadKioskConfigWithFallback(path, last_good).source == Source::kFile);
+  const std::string kept = ReadAll(last_good);
+  REQUIRE_FALSE(kept.empty());
+
+  // Valid TOML all through: a key, then comment lines up to the size wanted.
+  const auto padded = [](std::uintmax_t bytes) {
+    std::string text = "[gains]\nsound_gain_db = 6\n";
+    while (text.size() + 66 <= bytes) text += "#" + std::string(62, '-') + "\n";
+    text += "#" + std::string(bytes - text.size() - 2, '.') + "\n";
+    return text;
+  };
+  REQUIRE(padded(kMaxConfigFileBytes + 1).size() == kMaxConfigFileBytes + 1);
+  dir.Write("kiosk.toml", padded(kMaxConfigFileBytes + 1));
+  auto result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  CHECK(result.source == Source::kLastGood);
+  CHECK(result.config.sound_gain_db == 20.0);
+  CHECK(result.problem == path + ": too large for a configuration file (" +
+                              std::to_string(kMaxConfigFileBytes + 1) +
+                              " bytes; the limit is 1024 KiB) (using the last good configuration)");
+  CHECK(ReadAll(last_good) == kept);
+
+  dir.Write("kiosk.toml", padded(kMaxConfigFileBytes));
+  result = sas::kiosk::LoadKioskConfigWithFallback(path, last_good);
+  CHECK(result.source == Source::kFile);
+  CHECK(result.config.sound_gain_db == 6.0);
+}
+
+TEST_CASE(
+    "a 100 MB configuration file is refused by its size with at most 1 MiB of it read, and falls "
+    "back to the defaults when there is no last good one",
+    "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("kiosk.toml", "[gains]\nsound_gain_db = 6\n# ");
+  constexpr std::uintmax_t kSize = 100ull * 1024 * 1024;
+  std::filesystem::resize_file(path, kSize);  // sparse: no 100 MB written to the disk
+  const std::uint64_t read_before = BytesRead();
+  const auto result = sas::kiosk::LoadKioskConfigWithFallback(path, dir.file("last-good.toml"));
+  const std::uint64_t read = BytesRead() - read_before;
+  CHECK(result.source == sas::kiosk::ConfigLoadResult::Source::kDefaults);
+  CHECK_THAT(result.problem, Catch::StartsWith(path + ": too large for a configuration file (" +
+                                               std::to_string(kSize) + " bytes") &&
+                                 Catch::EndsWith("(using the built-in defaults)"));
+  CHECK(read <= sas::kiosk::kMaxConfigFileBytes);
+  CHECK_FALSE(std::filesystem::exists(dir.file("last-good.toml")));
 }
 
 TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is bounded",

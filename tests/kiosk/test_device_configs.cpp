@@ -1,4 +1,5 @@
-// The configuration as device settings (kiosk/device_configs.h): every key reaches its device.
+// The configuration as device settings (kiosk/device_configs.h): every key reaches its device,
+// and the device report (--list-devices) is given the same choices.
 #include <catch2/catch.hpp>
 
 #include "kiosk/device_configs.h"
@@ -65,4 +66,14 @@ TEST_CASE(
   CHECK(pen.screen_height_px == 720);
   CHECK(pen.seat == "seat1");
   CHECK(pen.device_name_contains == "Wacom");
+
+  // --list-devices judges the same devices the kiosk opens.
+  const auto selection = kiosk::DeviceSelectionFor(config);
+  CHECK(selection.audio_output == "hw:CARD=Device");
+  CHECK(selection.audio_input == "USB mic");
+  CHECK(selection.switches_backend == "gpio");
+  CHECK(selection.gpio_chip == "gpiochip1");
+  CHECK(selection.gpio_lines == switches.gpio.lines);
+  CHECK(selection.switches_debounce_ms == 12);
+  CHECK(selection.pen_device == "Wacom");
 }

@@ -226,6 +226,9 @@ std::vector<ConfigRow> ConfigRows() {
        text("[gains]\nambient_min_db = 20.0\nambient_max_db = 10.0\n"), "must not exceed"},
       {"binary junk", text(std::string("\x7f\x45\x4c\x46\x02\x01\x01\x00\xff\xfe", 10)), ""},
       {"an empty key name", text("[audio]\n\"\" = 1\n"), "unknown key"},
+      {"2 MiB of valid TOML (comments)",
+       text("[audio]\nbuffer_frames = 256\n" + std::string(2 << 20, '#') + "\n"),
+       "too large for a configuration file"},
   };
 }
 
@@ -248,5 +251,5 @@ TEST_CASE("fault matrix: configuration - a bad file is refused and the last good
     CHECK_THAT(result.problem, Catch::Contains(path) && Catch::Contains(row.message));
     CHECK(ReadAll(last_good) == before);
   }
-  CHECK(rows == 17);
+  CHECK(rows == 18);
 }

@@ -46,3 +46,43 @@ TEST_CASE("device report says which audio devices and switch backend the kiosk w
   const auto missing = UseLines(sas::platform::DiscoverDevices(selection));
   CHECK(Has(missing, "audio out: configured device 'no_such_card' not present -> runs silent"));
 }
+
+TEST_CASE(
+    "device report: a GPIO chip that lacks the configured lines is no GPIO choice, and the line names "
+    "chip, lines and what is used instead",
+    "[platform]") {
+  using sas::platform::GpioChipInfo;
+  using sas::platform::HidDeviceInfo;
+  sas::platform::DeviceSelection selection;  // auto, gpiochip0, 17 27 22 23 24
+  const std::vector<GpioChipInfo> chips = {{"gpiochip0", "gpio-sim", 5, {"", "", "", "", ""}}};
+  const std::vector<HidDeviceInfo> adapter = {{"/dev/hidraw3", "MCP2221 USB-I2C/UART Combo", ""}};
+  const std::string lacks =
+      "token switches: GPIO gpiochip0 lacks lines 17,27,22,23,24 (it has 5 lines: 0-4, unnamed); "
+      "using ";
+
+  auto use = sas::platform::SwitchesUse(selection, chips, adapter);
+  CHECK_FALSE(use.found);
+  CHECK(use.detail == lacks + "MCP2221A /dev/hidraw3 GP0-3, record on key R");
+
+  use = sas::platform::SwitchesUse(selection, chips, {});
+  CHECK_FALSE(use.found);
+  CHECK(use.detail == lacks + "keys 1-4 (toggle tokens) and R (record)");
+
+  selection.switches_backend = "gpio";  // the adapter is then not tried
+  use = sas::platform::SwitchesUse(selection, chips, adapter);
+  CHECK(use.detail == lacks + "keys 1-4 (toggle tokens) and R (record)");
+
+  // Lines the chip has: GPIO, as configured.
+  selection.gpio_lines = {"0", "1", "2", "3", "4"};
+  selection.switches_debounce_ms = 20;
+  use = sas::platform::SwitchesUse(selection, chips, adapter);
+  CHECK(use.found);
+  CHECK(use.detail ==
+        "token switches: GPIO gpiochip0 lines 0,1,2,3,4 (tokens 1-4, record), debounce 20 ms");
+
+  // No chip at all: the adapter, which is no problem with "auto".
+  selection.switches_backend = "auto";
+  use = sas::platform::SwitchesUse(selection, {}, adapter);
+  CHECK(use.found);
+  CHECK(use.detail == "token switches: MCP2221A /dev/hidraw3 GP0-3, record on key R");
+}

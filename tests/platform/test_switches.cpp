@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "platform/common/clock.h"
+#include "platform/gpio/gpio_chips.h"
 #include "platform/gpio/gpio_switches.h"
 #include "platform/hid/mcp2221.h"
 #include "platform/input/debouncer.h"
@@ -436,6 +438,125 @@ TEST_CASE("auto backend uses the MCP2221A adapter when there is no GPIO chip", "
   CHECK(std::string(inputs.ActiveBackend()) == "mcp2221");
   CHECK(board.Get("switches").state == DeviceState::kOk);
   inputs.hardware->Stop();  // the poll thread read the fake; stop it before `dev` goes
+  // A PC without a GPIO header is a normal set-up for "auto": said, but no warning.
+  const auto lines = logger.Recent();
+  CHECK(std::none_of(lines.begin(), lines.end(),
+                     [](const LogLine& l) { return l.level == LogLevel::kWarn; }));
+  CHECK(std::any_of(lines.begin(), lines.end(), [](const LogLine& l) {
+    return l.Text().rfind("info switches: GPIO chip 'sas-test-no-such-gpiochip' unusable", 0) == 0;
+  }));
+}
+
+namespace {
+
+// A 5-line chip with unnamed lines, as a small GPIO expander (or gpio-sim) reports itself.
+GpioChipInfo FiveLineChip() {
+  return {"gpiochip0", "gpio-sim", 5, {"", "", "", "", ""}};
+}
+
+// The GPIO lines' source as the libgpiod one makes it: the configured lines resolved on `chip`
+// (throwing for the lines it lacks), then a pipe standing in for the line fds.
+GpioSwitchInput::SourceFactory FakeChip(GpioChipInfo chip, GpioSwitchConfig config) {
+  return [chip, config]() -> std::unique_ptr<GpioEventSource> {
+    ResolveGpioLines(chip, config);
+    std::array<bool, kSwitchInputCount> high;
+    high.fill(true);
+    return std::make_unique<PipeEventSource>(high);
+  };
+}
+
+}  // namespace
+
+TEST_CASE(
+    "GPIO lines a chip lacks are all named, by offset or by name, with the lines the chip has",
+    "[platform]") {
+  GpioSwitchConfig config;  // 17, 27, 22, 23, 24
+  const auto five = FiveLineChip();
+  CHECK(MissingGpioLines(five, config.lines) ==
+        std::vector<std::string>{"17", "27", "22", "23", "24"});
+  CHECK_THROWS_MATCHES(
+      ResolveGpioLines(five, config), GpioLinesMissing,
+      Catch::Message("gpiochip0 lacks lines 17,27,22,23,24 (it has 5 lines: 0-4, unnamed)"));
+
+  config.lines = {"0", "1", "2", "3", ""};  // no record button on GPIO
+  CHECK(ResolveGpioLines(five, config) == std::vector<unsigned>{0, 1, 2, 3});
+  config.lines = {"0", "1", "2", "99999999999999999999", "4"};
+  CHECK(MissingGpioLines(five, config.lines) == std::vector<std::string>{"99999999999999999999"});
+
+  const GpioChipInfo named{"gpiochip2", "pinctrl", 4, {"TOKEN1", "", "TOKEN3", "TOKEN4"}};
+  config.lines = {"TOKEN1", "TOKEN2", "TOKEN3", "TOKEN4", "3"};
+  CHECK_THROWS_MATCHES(ResolveGpioLines(named, config), GpioLinesMissing,
+                       Catch::Message("gpiochip2 lacks line TOKEN2 (it has 4 lines: 0-3; named "
+                                      "0=TOKEN1 2=TOKEN3 3=TOKEN4)"));
+  config.lines = {"TOKEN4", "1", "TOKEN1", "TOKEN3", ""};
+  CHECK(ResolveGpioLines(named, config) == std::vector<unsigned>{3, 1, 0, 2});
+
+  // The chip by any name libgpiod looks it up by.
+  const std::vector<GpioChipInfo> chips = {named, five};
+  for (const char* spec : {"gpiochip0", "/dev/gpiochip0", "gpio-sim", "0"}) {
+    INFO(spec);
+    CHECK(FindGpioChip(chips, spec) == &chips[1]);
+  }
+  CHECK(FindGpioChip(chips, "gpiochip1") == nullptr);
+}
+
+TEST_CASE(
+    "a GPIO chip that lacks the configured lines is a warning naming the chip, the lines and what "
+    "is used instead: the MCP2221A adapter, or the keys",
+    "[platform]") {
+  SwitchesConfig config;  // auto, gpiochip0, lines 17 27 22 23 24
+  const std::string lacks = "gpiochip0 lacks lines 17,27,22,23,24 (it has 5 lines: 0-4, unnamed)";
+  {
+    INFO("auto, the adapter plugged in");
+    FakeMcp2221 dev;
+    Logger logger;
+    logger.SetEchoToStderr(false);
+    DeviceStatusBoard board(logger);
+    auto inputs = OpenSwitchInputs(config, board, nullptr, FakeOpener(dev),
+                                   FakeChip(FiveLineChip(), config.gpio));
+    REQUIRE(inputs.hardware != nullptr);
+    CHECK(std::string(inputs.ActiveBackend()) == "mcp2221");
+    inputs.hardware->Stop();
+    std::vector<std::string> warnings;
+    for (const auto& line : logger.Recent()) {
+      if (line.level == LogLevel::kWarn) warnings.push_back(line.Text());
+    }
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] == "warn switches: GPIO chip 'gpiochip0' unusable (" + lacks +
+                             "); using the MCP2221A adapter instead");
+  }
+  {
+    INFO("auto, no adapter");
+    FakeMcp2221 dev;
+    dev.present = false;
+    Logger logger;
+    logger.SetEchoToStderr(false);
+    DeviceStatusBoard board(logger);
+    auto inputs = OpenSwitchInputs(config, board, nullptr, FakeOpener(dev),
+                                   FakeChip(FiveLineChip(), config.gpio));
+    CHECK(inputs.hardware == nullptr);
+    const auto lines = logger.Recent();
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].level == LogLevel::kWarn);
+    CHECK_THAT(lines[0].Text(),
+               Catch::StartsWith("warn switches: missing: GPIO chip 'gpiochip0' unusable (" +
+                                 lacks + ") and ") &&
+                   Catch::EndsWith("; token switches fall back to keys 1-4 (R records)"));
+  }
+  {
+    INFO("gpio only");
+    config.backend = "gpio";
+    Logger logger;
+    logger.SetEchoToStderr(false);
+    DeviceStatusBoard board(logger);
+    auto inputs =
+        OpenSwitchInputs(config, board, nullptr, nullptr, FakeChip(FiveLineChip(), config.gpio));
+    CHECK(inputs.hardware == nullptr);
+    const auto lines = logger.Recent();
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].Text() == "warn switches: missing: GPIO chip 'gpiochip0' unusable (" + lacks +
+                                 "); token switches fall back to keys 1-4 (R records)");
+  }
 }
 
 TEST_CASE("MCP2221A asked for but absent at start: keys meanwhile, adapter taken when plugged in",
