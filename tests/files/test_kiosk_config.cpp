@@ -226,7 +226,7 @@ std::uint64_t BytesRead() {
 
 TEST_CASE(
     "a configuration file over 1 MiB is refused with the rejected file's fallback, and is not "
-    "kept as the last good one; one of exactly 1 MiB still loads",
+    "kept as the last good one, while one of exactly 1 MiB still loads",
     "[kiosk]") {
   using sas::kiosk::kMaxConfigFileBytes;
   using Source = sas::kiosk::ConfigLoadResult::Source;
