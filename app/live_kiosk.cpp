@@ -193,6 +193,18 @@ void WatchDeviceThreads(platform::WatchdogSupervisor& watchdog, const LiveDevice
   }
 }
 
+// What one start-up stage may take before systemd gives up on the start (see RunKiosk).
+constexpr std::uint64_t kStartStageBudgetUs = 90'000'000;
+
+// The start is judged by its progress, not by its total: each stage done gives systemd's start
+// timeout (the unit's TimeoutStartSec, 90 s by default) another kStartStageBudgetUs, so a slow
+// but moving start (a cold SD card, an emulated or busy machine) is not killed, and a stage that
+// hangs still is.
+void ReportStartStage(const platform::SystemdNotifier& notifier, const std::string& stage) {
+  notifier.Notify("EXTEND_TIMEOUT_USEC=" + std::to_string(kStartStageBudgetUs) +
+                  "\nSTATUS=starting: " + stage);
+}
+
 // What the loop works on, all opened by RunKiosk.
 struct LoopParts {
   const kiosk::KioskConfig& config;
@@ -383,10 +395,34 @@ class LiveLoop {
       }
       staff_overlays = staff_view_.overlays();
     }
+    const std::int64_t start_ns = platform::MonotonicNowNs();
     if (p_.view.Advance(now_s, p_.window.staff_panel_open(), std::move(staff_overlays))) {
       p_.window.Present(p_.view.view().TakeFrame());
       if (p_.backends.on_present) p_.backends.on_present(platform::MonotonicNowNs());
-      if (!ready_) AnnounceReady();
+      if (!ready_) WarmUp(platform::MonotonicNowNs() - start_ns);
+    }
+  }
+
+  // The first frames of a cold renderer can each take many seconds (a software GL compiling its
+  // shaders under emulation took 9.5 and 19 s, and the next frame again over 10 s), and systemd's
+  // watchdog (10 s) runs from READY=1. So the kiosk is ready once a frame draws at an interactive
+  // pace; frames before that are start-up stages, each extending the start timeout. After
+  // kMaxWarmUpFrames it is ready anyway, with a warning: a display that stays that slow is a fault
+  // the watchdog is there to catch.
+  static constexpr int kMaxWarmUpFrames = 8;
+  void WarmUp(std::int64_t draw_ns) {
+    ++warm_up_frames_;
+    char frame[64];
+    std::snprintf(frame, sizeof frame, "frame %d took %.1f s", warm_up_frames_,
+                  static_cast<double>(draw_ns) * 1e-9);
+    if (draw_ns <= kSlowPassNs) {
+      AnnounceReady();
+    } else if (warm_up_frames_ >= kMaxWarmUpFrames) {
+      p_.log.Warn("kiosk",
+                  std::string("the display is still slow (") + frame + "); starting anyway");
+      AnnounceReady();
+    } else {
+      ReportStartStage(notifier_, std::string("drawing: ") + frame);
     }
   }
 
@@ -415,15 +451,14 @@ class LiveLoop {
   kiosk::AmbientGain ambient_;
   double ambient_last_s_ = -1.0;
   bool passive_shown_ = false;  // the view is drawing the passive stroke's dent
-  bool ready_ = false;          // the first frame was presented and announced
-  int slow_passes_ = 0;         // passes over kSlowPassNs since the last report
+  bool ready_ = false;          // a frame drew at an interactive pace and READY=1 was sent
+  int warm_up_frames_ = 0;      // frames presented before that
+  platform::SystemdNotifier notifier_{};
+  int slow_passes_ = 0;  // passes over kSlowPassNs since the last report
   std::int64_t slow_reported_ns_ = 0;
 };
 
 }  // namespace
-
-// What one start-up stage may take before systemd gives up on the start (see RunKiosk).
-constexpr std::uint64_t kStartStageBudgetUs = 90'000'000;
 
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends) {
@@ -437,15 +472,8 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   kiosk::TuneAllocatorForLongRuns();
   auto& log = platform::DefaultLogger();
   platform::DeviceStatusBoard board(log);
-  // The start is judged by its progress, not by its total: each stage done gives systemd's start
-  // timeout (the unit's TimeoutStartSec, 90 s by default) another kStartStageBudgetUs, so a slow
-  // but moving start (a cold SD card, an emulated or busy machine) is not killed, and a stage that
-  // hangs still is.
   const platform::SystemdNotifier notifier;
-  const auto started = [&notifier](const char* stage) {
-    notifier.Notify("EXTEND_TIMEOUT_USEC=" + std::to_string(kStartStageBudgetUs) +
-                    "\nSTATUS=starting: " + stage);
-  };
+  const auto started = [&notifier](const char* stage) { ReportStartStage(notifier, stage); };
   std::error_code dir_error;
   fs::create_directories(options.state_dir, dir_error);
   if (dir_error)

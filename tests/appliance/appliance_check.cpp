@@ -57,7 +57,8 @@ std::vector<double> Channel(const std::vector<float>& stereo, int channel, doubl
   const auto a = std::min(frames, static_cast<std::size_t>(std::max(0.0, t0) * kRateHz));
   const auto b = std::min(frames, static_cast<std::size_t>(std::max(0.0, t1) * kRateHz));
   std::vector<double> out;
-  for (std::size_t i = a; i < b; ++i) out.push_back(stereo[2 * i + static_cast<std::size_t>(channel)]);
+  for (std::size_t i = a; i < b; ++i)
+    out.push_back(stereo[2 * i + static_cast<std::size_t>(channel)]);
   return out;
 }
 
@@ -132,9 +133,11 @@ int Stroke(const std::string& capture, double t0, double t1, double t2) {
       captured_s, during_db, t0, t1, after_db, decayed_at, decayed_at - t1, haptic_db, band_db);
   int failures = 0;
   if (captured_s < t2) failures += std::printf("FAIL: the capture ends before %.2f s\n", t2) > 0;
-  if (during_db < -60.0) failures += std::printf("FAIL: the speaker is silent during the stroke\n") > 0;
+  if (during_db < -60.0)
+    failures += std::printf("FAIL: the speaker is silent during the stroke\n") > 0;
   if (decayed_at < 0.0)
-    failures += std::printf("FAIL: the speaker has not decayed between %.2f and %.2f s\n", t1, t2) > 0;
+    failures +=
+        std::printf("FAIL: the speaker has not decayed between %.2f and %.2f s\n", t1, t2) > 0;
   if (band_db < -60.0 || band_db < haptic_db - 6.0)
     failures += std::printf("FAIL: the transducer has no energy in 40-800 Hz\n") > 0;
   return failures == 0 ? 0 : 1;
@@ -203,8 +206,10 @@ int Cue(const std::string& capture, double t0, double t1, const std::vector<std:
   for (std::size_t i = 0; i < cues.size(); ++i) {
     const double c = CueScore(speaker, cues[i]);
     std::printf("cue: %s median block correlation %.3f\n", cues[i].c_str(), c);
-    if (i == 0) wanted = c;
-    else best_other = std::max(best_other, c);
+    if (i == 0)
+      wanted = c;
+    else
+      best_other = std::max(best_other, c);
   }
   if (wanted < 0.8) return std::printf("FAIL: the wanted cue is not heard\n"), 1;
   if (wanted < best_other + 0.2) return std::printf("FAIL: another cue matches as well\n"), 1;
@@ -252,8 +257,8 @@ int Find(const std::string& mode, const std::string& image, const std::string& v
     if (got == 0) break;
     buffer.append(chunk.data(), got);
     // Whole zero chunks (unused disk) cannot hold a needle: only others are searched.
-    const bool zero =
-        std::all_of(chunk.begin(), chunk.begin() + static_cast<long>(got), [](char c) { return c == 0; });
+    const bool zero = std::all_of(chunk.begin(), chunk.begin() + static_cast<long>(got),
+                                  [](char c) { return c == 0; });
     if (!zero) {
       for (std::size_t k = 0; k < needles.size(); ++k) {
         if (found_at[k] >= 0) continue;
@@ -273,8 +278,8 @@ int Find(const std::string& mode, const std::string& image, const std::string& v
                   found_at[k]);
     }
   }
-  std::printf("find: %d of %zu voice stretches found in %s (%.0f MB read)\n", found,
-              needles.size(), image.c_str(), static_cast<double>(offset) / 1e6);
+  std::printf("find: %d of %zu voice stretches found in %s (%.0f MB read)\n", found, needles.size(),
+              image.c_str(), static_cast<double>(offset) / 1e6);
   if (mode == "absent") return found == 0 ? 0 : 1;
   return found > 0 ? 0 : 1;
 }

@@ -225,10 +225,10 @@ class Keyboard : public UinputDevice {
 // The MCP2221A's HID interface: one vendor-defined collection with a 64-byte input and a 64-byte
 // output report, no report IDs.
 const std::vector<std::uint8_t> kMcp2221Descriptor = {
-    0x06, 0x00, 0xFF,  // usage page (vendor 0xFF00)
-    0x09, 0x01,        // usage 1
-    0xA1, 0x01,        // collection (application)
-    0x19, 0x01, 0x29, 0x40,  // usage 1..64
+    0x06, 0x00, 0xFF,              // usage page (vendor 0xFF00)
+    0x09, 0x01,                    // usage 1
+    0xA1, 0x01,                    // collection (application)
+    0x19, 0x01, 0x29, 0x40,        // usage 1..64
     0x15, 0x00, 0x26, 0xFF, 0x00,  // logical 0..255
     0x75, 0x08, 0x95, 0x40,        // 64 x 8 bits
     0x81, 0x02,                    // input (data, variable, absolute)
@@ -356,8 +356,8 @@ class Mcp2221 {
 
 // ------------------------------------------------------------------ commands
 
-const std::map<std::string, int> kKeys = {{"r", KEY_R},         {"1", KEY_1},      {"2", KEY_2},
-                                          {"3", KEY_3},         {"4", KEY_4},      {"s", KEY_S},
+const std::map<std::string, int> kKeys = {{"r", KEY_R},           {"1", KEY_1},        {"2", KEY_2},
+                                          {"3", KEY_3},           {"4", KEY_4},        {"s", KEY_S},
                                           {"ctrl", KEY_LEFTCTRL}, {"alt", KEY_LEFTALT}};
 
 class Devices {
@@ -445,8 +445,7 @@ int CaptureWait(const char* path, double from_s, bool loud, double dbfs, double 
   const std::size_t hops_per_window = std::max<std::size_t>(1, (window + hop - 1) / hop);
   std::vector<double> hop_energy;
   std::size_t next_frame = static_cast<std::size_t>(std::max(0.0, from_s) * kRate);
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   std::vector<float> buffer(2 * hop);
   for (;;) {
     std::ifstream in(path, std::ios::binary);
@@ -489,7 +488,9 @@ int main(int argc, char** argv) {
                        std::atof(argv[6]), std::atof(argv[7]));
   }
   if (argc != 3) {
-    std::fprintf(stderr, "usage: fake_devices <control fifo> <status file> | hold <file> | capture-wait ...\n");
+    std::fprintf(
+        stderr,
+        "usage: fake_devices <control fifo> <status file> | hold <file> | capture-wait ...\n");
     return 2;
   }
   Devices devices;
@@ -505,7 +506,8 @@ int main(int argc, char** argv) {
   long n = 0;
   while (std::fgets(line, sizeof line, in) != nullptr) {
     std::string command(line);
-    while (!command.empty() && (command.back() == '\n' || command.back() == '\r')) command.pop_back();
+    while (!command.empty() && (command.back() == '\n' || command.back() == '\r'))
+      command.pop_back();
     if (command.empty()) continue;
     ++n;
     if (command == "quit") break;
