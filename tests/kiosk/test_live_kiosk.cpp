@@ -102,6 +102,42 @@ std::string ReadAll(std::FILE* file) {
   return text;
 }
 
+// One run of the kiosk as the unit starts it, on SDL's offscreen driver with keys for switches,
+// no microphone, a threaded fake audio device, and a notify socket whose messages go into the
+// timeline (Drain, from the kiosk's hooks). The test fills in the other hooks, then Run()s.
+struct LiveKioskRun {
+  test::TempDir dir;
+  std::string config = dir.Write("kiosk.toml",
+                                 "[audio]\n"
+                                 "input_device = \"sas-test-no-such-microphone\"\n"
+                                 "[switches]\n"
+                                 "backend = \"keyboard\"\n");
+  test::NotifySocket notify;
+  std::FILE* out = std::tmpfile();
+  platform::ThreadedFakeAudioStreamBackend::Shared device;
+  Timeline timeline;
+  app::KioskBackends backends;
+
+  LiveKioskRun() {
+    backends.audio_stream = [this] {
+      return std::make_unique<platform::ThreadedFakeAudioStreamBackend>(device);
+    };
+  }
+  ~LiveKioskRun() {
+    if (out != nullptr) std::fclose(out);
+  }
+  void Drain() {
+    for (auto& message : notify.Drain()) timeline.entries.push_back(std::move(message));
+  }
+  int Run() {
+    setenv("SDL_VIDEODRIVER", "offscreen", 1);
+    const int code = app::RunKiosk({"--config", config, "--state-dir", dir.file("state")}, out,
+                                   stderr, backends);
+    unsetenv("SDL_VIDEODRIVER");
+    return code;
+  }
+};
+
 }  // namespace
 
 TEST_CASE(
@@ -109,32 +145,18 @@ TEST_CASE(
     "screen, and a full pen queue at start is worked off over many passes, the first watchdog "
     "ping not waiting for it, and the start reports each stage to systemd",
     "[kiosk]") {
-  setenv("SDL_VIDEODRIVER", "offscreen", 1);
-  test::TempDir dir;
-  const std::string config = dir.Write("kiosk.toml",
-                                       "[audio]\n"
-                                       "input_device = \"sas-test-no-such-microphone\"\n"
-                                       "[switches]\n"
-                                       "backend = \"keyboard\"\n");
-  test::NotifySocket notify;
-  std::FILE* out = std::tmpfile();
-  REQUIRE(out != nullptr);
-
-  platform::ThreadedFakeAudioStreamBackend::Shared device;
+  LiveKioskRun run;
+  REQUIRE(run.out != nullptr);
+  std::FILE* out = run.out;
+  Timeline& timeline = run.timeline;
+  app::KioskBackends& backends = run.backends;
   FloodedTablet* tablet = nullptr;
-  Timeline timeline;
   long out_bytes_at_first_frame = -1;
   int passes = 0;
   bool stopping = false;
   std::int64_t first_pass_ns = 0;
-  const auto drain = [&] {
-    for (auto& message : notify.Drain()) timeline.entries.push_back(std::move(message));
-  };
+  const auto drain = [&] { run.Drain(); };
 
-  app::KioskBackends backends;
-  backends.audio_stream = [&] {
-    return std::make_unique<platform::ThreadedFakeAudioStreamBackend>(device);
-  };
   backends.pen = [&] {
     auto source = std::make_unique<FloodedTablet>();
     tablet = source.get();
@@ -162,11 +184,8 @@ TEST_CASE(
     }
   };
 
-  const int code =
-      app::RunKiosk({"--config", config, "--state-dir", dir.file("state")}, out, stderr, backends);
-  unsetenv("SDL_VIDEODRIVER");
+  const int code = run.Run();
   const std::string printed = ReadAll(out);
-  std::fclose(out);
   INFO(::Catch::Detail::stringify(timeline.entries));
   INFO("stdout: " << printed);
   REQUIRE(code == 0);
@@ -233,27 +252,13 @@ TEST_CASE(
     "each slow frame extends systemd's start timeout, and READY=1 follows the first frame drawn "
     "at an interactive pace",
     "[kiosk]") {
-  setenv("SDL_VIDEODRIVER", "offscreen", 1);
-  test::TempDir dir;
-  const std::string config = dir.Write("kiosk.toml",
-                                       "[audio]\n"
-                                       "input_device = \"sas-test-no-such-microphone\"\n"
-                                       "[switches]\n"
-                                       "backend = \"keyboard\"\n");
-  test::NotifySocket notify;
-  std::FILE* out = std::tmpfile();
-  REQUIRE(out != nullptr);
-  platform::ThreadedFakeAudioStreamBackend::Shared device;
-  Timeline timeline;
+  LiveKioskRun run;
+  REQUIRE(run.out != nullptr);
+  Timeline& timeline = run.timeline;
+  app::KioskBackends& backends = run.backends;
   int frames = 0;
   bool stopping = false;
-  const auto drain = [&] {
-    for (auto& message : notify.Drain()) timeline.entries.push_back(std::move(message));
-  };
-  app::KioskBackends backends;
-  backends.audio_stream = [&] {
-    return std::make_unique<platform::ThreadedFakeAudioStreamBackend>(device);
-  };
+  const auto drain = [&] { run.Drain(); };
   backends.pen = [] { return std::make_unique<FloodedTablet>(); };
   backends.on_present = [&](std::int64_t) {
     drain();
@@ -270,10 +275,7 @@ TEST_CASE(
       std::raise(SIGTERM);
     }
   };
-  const int code =
-      app::RunKiosk({"--config", config, "--state-dir", dir.file("state")}, out, stderr, backends);
-  unsetenv("SDL_VIDEODRIVER");
-  std::fclose(out);
+  const int code = run.Run();
   INFO(::Catch::Detail::stringify(timeline.entries));
   REQUIRE(code == 0);
   const std::size_t ready = timeline.Find("READY=1");
