@@ -98,12 +98,18 @@ namespace {
 using Double4 = double __attribute__((vector_size(32)));
 }  // namespace
 
+// The AVX2 clone is x86-64's alone (GCC rejects the target elsewhere); an arm64 build (the
+// Raspberry Pi) compiles the one version, with Double4 in two NEON registers.
+#if defined(__x86_64__)
+#define SAS_AVX2_CLONE __attribute__((target_clones("default", "avx2")))
+#else
+#define SAS_AVX2_CLONE
+#endif
+
 #define SAS_LOAD4(dst, src) __builtin_memcpy(&(dst), (src), sizeof(Double4))
 
-__attribute__((target_clones("default", "avx2"))) double AdvanceModesPass(ModalState& s,
-                                                                          const ModeMaps& steps,
-                                                                          double force_n,
-                                                                          const ModeMaps& next) {
+SAS_AVX2_CLONE double AdvanceModesPass(ModalState& s, const ModeMaps& steps, double force_n,
+                                       const ModeMaps& next) {
   Double4 q_sum{0.0, 0.0, 0.0, 0.0}, v_sum = q_sum, pickup = q_sum, free_next = q_sum;
   const Double4 force{force_n, force_n, force_n, force_n};
   const Double4 one{1.0, 1.0, 1.0, 1.0};
@@ -145,8 +151,7 @@ __attribute__((target_clones("default", "avx2"))) double AdvanceModesPass(ModalS
   return change;
 }
 
-__attribute__((target_clones("default", "avx2"))) double FreeMotionPass(const ModalState& s,
-                                                                        const ModeMaps& steps) {
+SAS_AVX2_CLONE double FreeMotionPass(const ModalState& s, const ModeMaps& steps) {
   Double4 sum{0.0, 0.0, 0.0, 0.0};
   const Double4 one{1.0, 1.0, 1.0, 1.0};
   for (int i = 0; i < s.padded_count; i += 4) {
@@ -162,5 +167,6 @@ __attribute__((target_clones("default", "avx2"))) double FreeMotionPass(const Mo
 }
 
 #undef SAS_LOAD4
+#undef SAS_AVX2_CLONE
 
 }  // namespace sas::synth

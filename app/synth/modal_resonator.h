@@ -131,9 +131,9 @@ inline int MapId(const ModalState& s, const ModeMaps& maps) {
   return -2;
 }
 
-// The per-sample pass (AdvanceModes / FreeContactMotion below), out of line: it is built twice,
-// for the x86-64 baseline and for AVX2 (picked at load time; the arithmetic and the order of the
-// sums are the same in both, so the output does not depend on the machine).
+// The per-sample pass (AdvanceModes / FreeContactMotion below), out of line: on x86-64 it is built
+// twice, for the baseline and for AVX2 (picked at load time; the arithmetic and the order of the
+// sums are the same in both, so the output does not depend on the machine); arm64 builds it once.
 double AdvanceModesPass(ModalState& s, const ModeMaps& steps, double force_n, const ModeMaps& next);
 double FreeMotionPass(const ModalState& s, const ModeMaps& steps);
 
