@@ -290,7 +290,12 @@ shows() {
     voice) "$e2e_tool" voice "$png" >/dev/null 2>&1 ;;
     amber-min) [ "$("$e2e_tool" amber "$png")" -ge "$1" ] ;;
     amber-above) [ "$("$e2e_tool" amber "$png")" -gt $(($("$e2e_tool" amber "$out/$1.png") + $2)) ] ;;
-    amber-below) [ "$("$e2e_tool" amber "$png")" -lt $(($("$e2e_tool" amber "$out/$1.png") - $2)) ] ;;
+    # Back: fewer amber pixels than when lost, and the panel (its amber title) still on the screen
+    # (a black screen has no amber at all).
+    amber-below)
+      local n
+      n=$("$e2e_tool" amber "$png")
+      [ "$n" -ge 500 ] && [ "$n" -lt $(($("$e2e_tool" amber "$out/$1.png") - $2)) ] ;;
     *) return 1 ;;
   esac
 }
@@ -436,7 +441,7 @@ fi
 amber() { "$e2e_tool" amber "$1" 2>/dev/null || echo 0; }
 for device in pen board; do
   a0=$(amber "$out/panel.png"); a1=$(amber "$out/panel_${device}_lost.png"); a2=$(amber "$out/panel_${device}_back.png")
-  if [ "$a1" -gt $((a0 + 200)) ] && [ "$a2" -lt $((a1 - 200)) ]; then
+  if [ "$a1" -gt $((a0 + 200)) ] && [ "$a2" -lt $((a1 - 200)) ] && [ "$a2" -ge 500 ]; then
     row PASS "staff_panel_${device}" "amber pixels on the panel: ${a0} before, ${a1} unplugged, ${a2} back"
   else
     row FAIL "staff_panel_${device}" "amber pixels on the panel: ${a0} before, ${a1} unplugged, ${a2} back"
