@@ -4,7 +4,8 @@
 # root window saved as PNG (lossless: the contrast is measured on exact pixels) and checked by
 # staff_panel_check: the panel's text and button labels at 7:1 or more against what is behind
 # them, its lines drawn in normal case and the configuration path as given (all lower case here,
-# so capitals would show).
+# so capitals would show). Each step waits for its event (the kiosk's log line, a screenshot that
+# passes the check) with xvfb_common.sh's generous deadline.
 #   staff_panel_xvfb_e2e.sh <sketch-a-scratch> <staff_panel_check> <textures dir> <width> <height>
 set -euo pipefail
 app="$1"
@@ -31,25 +32,24 @@ mkdir -p "$work/state" "$work/etc/sketch-a-scratch"
 config="$work/etc/sketch-a-scratch/kiosk.toml"
 # No passive strokes: the picture under the panel stays the texture's picture, undented.
 printf '[switches]\nbackend = "keyboard"\n[session]\ndefault_texture = "wooden_board"\n[attract]\npassive_stroke = false\n' >"$config"
-Xvfb -displayfd 3 -screen 0 "${width}x${height}x24" -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
-xvfb_pid=$!
-for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.05; done
-[ -s "$work/display" ] || fail "Xvfb did not start: $(cat "$work/xvfb.log")"
-export DISPLAY=":$(cat "$work/display")" SDL_VIDEODRIVER=x11
+start_xvfb "$width" "$height" || fail "Xvfb did not start"
+export SDL_VIDEODRIVER=x11
 unset WAYLAND_DISPLAY
+log_has() { grep -q -- "$1" "$work/app.log" 2>/dev/null; }
 "$app" kiosk --config "$config" --state-dir "$work/state" >"$work/app.log" 2>&1 &
 app_pid=$!
-for _ in $(seq 600); do  # up to 60 s, for a loaded machine
-  grep -q '^kiosk ready' "$work/app.log" && break
-  kill -0 "$app_pid" 2>/dev/null || fail "the kiosk ended before it was ready"
-  sleep 0.1
-done
+watch=$app_pid  # a wait ends at once when the kiosk is gone
+until_true "log: kiosk ready" log_has '^kiosk ready' || fail "the kiosk ended or never got ready"
 grep -q "^kiosk ready ${width}x${height} " "$work/app.log" || fail "the kiosk is not ready full-screen at ${width}x${height}"
+# The chord is held until the kiosk says the panel opened (it must be held 1 s by the kiosk's own
+# clock, which a busy machine can start late).
 xdotool keydown ctrl+alt+s
-sleep 1.3  # the chord is held 1 s
+opened=0
+until_true "log: staff panel opened" log_has 'staff panel opened' || opened=1
 xdotool keyup s alt ctrl
-for _ in $(seq 50); do grep -q 'staff panel opened' "$work/app.log" && break; sleep 0.1; done
-grep -q 'staff panel opened' "$work/app.log" || fail "the staff chord did not open the panel"
-sleep 1  # the panel's lines are rebuilt 4 times a second; the frame after that is on screen
-import -window root "$work/panel.png" || fail "screenshot failed"
-"$check" "$work/panel.png" "$textures/wooden_board/picture.png" "$config" || fail "staff panel check at ${width}x${height}"
+[ $opened = 0 ] || fail "the staff chord did not open the panel"
+# The panel is on the screen some frames after the log line (its lines are rebuilt 4 times a
+# second): screenshots until one passes the check.
+shot_until panel "the staff panel passing its check" \
+  "$check" "$work/panel.png" "$textures/wooden_board/picture.png" "$config" ||
+  fail "staff panel check at ${width}x${height}"

@@ -60,8 +60,10 @@ int LinesSince(const platform::Logger& log, std::uint64_t from, const std::strin
   return n;
 }
 
+// Polls until the condition holds. The deadline is for a condition that never comes: the threads
+// behind it (audio output, device watchers) start late on a busy machine, which is no fault.
 bool WaitFor(const std::function<bool()>& condition, const std::function<void()>& step,
-             double timeout_s = 10.0) {
+             double timeout_s = 120.0) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline) {
     step();
