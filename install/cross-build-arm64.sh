@@ -98,7 +98,7 @@ cleanup() {
   local i
   for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount "${mounted[i]}" 2>/dev/null || true; done
   # Never delete through a mount that is still there (the source tree is one).
-  if grep -q " $work/" /proc/mounts; then
+  if grep -qE " ${work}[/ ]" /proc/mounts; then
     echo "cross-build-arm64: still mounted under $work, left in place" >&2
   elif [ -n "${SAS_CROSS_KEEP:-}" ]; then
     echo "cross-build-arm64: kept $work"
@@ -108,6 +108,12 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM HUP  # through the EXIT trap: unmount before anything is deleted
+# In memory (about 1.5 GB with the build tree): unpacking and deleting 22,000 files on the shared
+# disk took up to a minute under load, in a tmpfs a few seconds. A kept chroot stays on disk.
+if [ -z "${SAS_CROSS_KEEP:-}" ]; then
+  mount -t tmpfs -o size=6g,mode=0755 sas-cross "$work" || die "cannot mount a tmpfs on $work"
+  mounted+=("$work")
+fi
 mkdir -p "$root"
 tar -C "$root" -xf "$tarball" || die "cannot unpack $tarball"
 phase "chroot unpacked in $work"
