@@ -242,9 +242,9 @@ TEST_CASE(
   // later one only if the fake audio thread had not yet called back) ...
   REQUIRE(ping_pass < queued.size());
   CHECK(queued[ping_pass] > 0);
-  // ... and the whole flood was worked off, none dropped on the way.
+  // ... and the whole flood was worked off, none dropped on the way (read at the last pass: the
+  // tablet itself went with the kiosk's devices when RunKiosk returned).
   CHECK(queued.back() == 0);
-  CHECK(tablet->Queued() == 0);
 }
 
 TEST_CASE(
