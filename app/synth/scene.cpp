@@ -64,6 +64,17 @@ constexpr double kFrictionSkipAmplitude = 1e-9;
 constexpr std::uint64_t kNoiseSeed = 0x9E3779B97F4A7C15ull;
 // Commanded speeds are clamped here (m/s): far beyond any hand, still finite arithmetic.
 constexpr double kMaxSpeed = 100.0;
+// Lifting the pen. A pen-up report does not end the contact in one sample: the hand rises at
+// kLiftSpeedMps (the speed a tap lands with, ProbeCommand::landing_speed_mps) and holds the pen
+// in the fingertips' pulp, a spring of about 1 mm per newton at a pen's load (fingertip pulp
+// compression: Serina, Mote & Rempel, J. Biomechanics 30(10), 1997; its stiffening with force is
+// left out). So the tip's load falls as the hand rises — over ~10 ms for 1 N, longer where the
+// surface it pressed down springs back with it — and once the spring is slack it pulls the tip
+// off. Stepping the load away instead releases the surface's whole deflection at once: a pop
+// louder than the stroke on a soft material. The unload is bounded by kMaxUnloadS.
+constexpr double kLiftSpeedMps = 0.1;
+constexpr double kFingerPulpNPerM = 1e3;
+constexpr double kMaxUnloadS = 0.05;
 
 }  // namespace
 
@@ -98,6 +109,14 @@ struct Scene::Impl {
   double step_x_m = 0.0, step_y_m = 0.0;  // pen movement per frame (set with the gesture)
   double surface_m = 0.0;     // felt profile at the probe position (end of the last sample)
   bool burst_flight = false;  // tip up, released by a burst: park once it leaves the surface
+  // A lift being carried out (kLiftSpeedMps): the stroke's gesture stays in force, its push the
+  // fingers' spring as the hand rises, until the tip is off the surface; then the probe is parked
+  // and `unload_after` (the pen-up command, or the latest one of the pen hovering since) applies.
+  bool unloading = false;
+  int unload_samples = 0;   // samples since the lift
+  double unload_tip_m = 0.0;  // the probe's height at the lift
+  ProbeCommand unload_after{};
+  bool finishing_unload = false;
   bool burst_touched = false;
   int burst_samples = 0;
   std::uint64_t noise_state = kNoiseSeed;
@@ -159,6 +178,10 @@ struct Scene::Impl {
     surface_m = 0.0;
     burst_flight = burst_touched = false;
     burst_samples = 0;
+    unloading = false;
+    unload_samples = 0;
+    unload_tip_m = 0.0;
+    unload_after = ProbeCommand{};
     noise_state = kNoiseSeed;
     rough_keep = 1.0;
     rough_in = contact_step = 0.0;
@@ -321,6 +344,28 @@ struct Scene::Impl {
     probe.velocity_mps = velocity_mps;
   }
 
+  // A burst's impulse (N s) on the probe, towards the surface.
+  void Kick(double impulse_n_s) {
+    probe.velocity_mps -= std::min(impulse_n_s / config.probe_mass_kg, kMaxSpeed);
+  }
+
+  // The pen's push on the tip (N, down; negative pulls it up). While unloading: the pulp spring,
+  // compressed by the stroke's push at the lift, relaxed by the hand's rise, compressed again by
+  // the tip's own rise (a surface springing back under it).
+  double Push() const {
+    if (!gesture.tip_down) return 0.0;
+    if (!unloading) return gesture.normal_force_n;
+    const double hand_rise = kLiftSpeedMps * static_cast<double>(unload_samples + 1) / fs;
+    return gesture.normal_force_n - kFingerPulpNPerM * (hand_rise - (probe.height_m - unload_tip_m));
+  }
+
+  // The unload is over: the tip has left, the pen-up command applies.
+  void FinishUnload() {
+    finishing_unload = true;
+    Apply(unload_after);
+    finishing_unload = false;
+  }
+
   void Apply(const ProbeCommand& raw) {
     ProbeCommand c = raw;
     c.x_m = FiniteOr(c.x_m, x_m);
@@ -338,6 +383,26 @@ struct Scene::Impl {
     } else {
       c.direction_x = 1.0;
       c.direction_y = 0.0;
+    }
+    // A pen-up report while the tip presses the surface starts the unload (kLiftSpeedMps): the
+    // stroke goes on with its push falling to zero, then the probe is parked. Stepping the load
+    // away at once releases the surface's whole deflection in one sample, a pop louder than the
+    // stroke on a soft material.
+    if (unloading) {
+      if (!c.tip_down) {  // the pen hovers on while the tip comes up
+        unload_after = c;
+        if (c.burst_impulse_n_s > 0.0) Kick(c.burst_impulse_n_s);
+        return;
+      }
+      unloading = false;  // down again before the tip left: the stroke goes on
+    } else if (!c.tip_down && gesture.tip_down && probe.active && !finishing_unload &&
+               config.impact.enabled && gesture.normal_force_n > 0.0) {
+      unloading = true;
+      unload_samples = 0;
+      unload_tip_m = probe.height_m;
+      unload_after = c;
+      if (c.burst_impulse_n_s > 0.0) Kick(c.burst_impulse_n_s);
+      return;
     }
     const bool was_down = gesture.tip_down;
     // Friction is computed along the stroke: when the stroke turns, the bristle deflection keeps
@@ -365,7 +430,7 @@ struct Scene::Impl {
         burst_touched = false;
         burst_samples = 0;
       }
-      probe.velocity_mps -= std::min(c.burst_impulse_n_s / config.probe_mass_kg, kMaxSpeed);
+      Kick(c.burst_impulse_n_s);
     }
     SetSpatialSteps();
     if (probe.active) idle = false;  // a touch or a burst wakes the idle scene
@@ -381,7 +446,7 @@ struct Scene::Impl {
       drive.surface_begin_m = surface_m;
       drive.surface_end_m = next;
       drive.slide_velocity_mps = gesture.tip_down ? gesture.velocity_mps : 0.0;
-      drive.push_n = gesture.tip_down ? gesture.normal_force_n : 0.0;
+      drive.push_n = Push();
       drive.friction_share = SurfaceReader::FrictionShare(gesture.style, gesture.width_mm);
       if (config.friction.enabled && config.friction.sigma3 > 0.0 &&
           drive.slide_velocity_mps > 0.0) {
@@ -431,6 +496,15 @@ struct Scene::Impl {
     pending_pickup[pending] = pickup;
     pending_felt[pending] = felt;
     ++pending;
+    if (unloading) {
+      ++unload_samples;
+      // Off: the spring pulls and the tip has left the surface (or the bound is reached).
+      const bool off = Push() < 0.0 && probe.compression_m < 0.0;
+      if (off || !probe.active || unload_samples >= static_cast<int>(kMaxUnloadS * fs)) {
+        unloading = false;
+        FinishUnload();
+      }
+    }
   }
 };
 
@@ -577,7 +651,7 @@ double Scene::TotalEnergy() const {
   double e = s.modes.Energy();
   if (s.probe.active) {
     const double m = s.config.probe_mass_kg;
-    const double push = s.gesture.tip_down ? s.gesture.normal_force_n : 0.0;
+    const double push = s.Push();
     e += 0.5 * m * s.probe.velocity_mps * s.probe.velocity_mps + push * s.probe.height_m;
     // The energy the scheme holds in the contact: V(x) for the discrete gradient, its own
     // discrete (received / quadratised) energy for the others (synth/contact.h).
@@ -598,6 +672,7 @@ bool Scene::skipping_idle() const {
 SceneProbeState Scene::probe_state() const {
   const Impl& s = *impl_;
   SceneProbeState st;
+  st.unloading = s.unloading;
   st.active = s.probe.active;
   st.height_m = s.probe.height_m;
   st.velocity_mps = s.probe.velocity_mps;

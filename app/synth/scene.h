@@ -38,6 +38,9 @@ struct SceneProbeState {
   double y_m = 0.0;
   int substeps = 1;               // contact sub-steps used in the last sample
   bool friction_skipped = false;  // SceneSkips::relaxed_friction left friction out of it
+  // The pen was lifted and the hand is still taking the load off the tip (a few ms; scene.cpp,
+  // kLiftSpeedMps): the hand's work is an input to the energy until it ends.
+  bool unloading = false;
 };
 
 // What the scene leaves out because it cannot change the output. Everything is skipped by default;
