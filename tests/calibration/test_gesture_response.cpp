@@ -27,10 +27,12 @@ using sas::synth::ProbeStyle;
 const std::set<std::string>& KnownOpen() {
   static const std::set<std::string> keys = {
       "bubble wrap/style-spectra/rub-roll/30mm/s,p0.2",
-      "broken glass/speed-centroid/scrape/p0.2",
-      "broken glass/speed-centroid/scrape/p0.8",
-      "broken glass/pressure-sound/scrape/30mm/s",
+      "broken glass/speed-centroid/rub/p0.2",
+      "broken glass/speed-sound/rub/p0.8",
+      "broken glass/speed-centroid/rub/p0.8",
       "broken glass/speed-centroid/roll/p0.2",
+      "broken glass/speed-centroid/roll/p0.8",
+      "broken glass/style-spectra/scrape-roll/300mm/s,p0.8",
       "wooden board/speed-centroid/roll/p0.8",
       "cracked ground/style-spectra/scrape-roll/300mm/s,p0.8",
       "voice/speed-centroid/rub/p0.8",
