@@ -273,8 +273,10 @@ struct KioskWindow::Impl {
         chord_since_ns = t;
         if (options.staff_chord.hold_s <= 0.0) FireChord(out, t);
       } else if (!down) {
-        // Held long enough by the key's own time stamps, even if the loop was too busy to look
-        // while it was held (a slow frame): it counts.
+        // Held long enough by the events' time stamps: it counts. SDL stamps an event when it
+        // reads it from the kernel, not when the key moved, so this holds across a slow frame
+        // only if SDL read the press before the frame and the release after it; a press and
+        // release read together look instant (staff hold the chord until the panel answers).
         if (chord_held && !chord_fired &&
             static_cast<double>(t - chord_since_ns) * 1e-9 >= options.staff_chord.hold_s) {
           FireChord(out, t);

@@ -73,6 +73,18 @@ dev() {  # one fake-device command, waiting until it is done
     return 1
   fi
 }
+# chord_until PATTERN: staff hold ctrl+alt+s until the panel answers (the journal line), as a
+# person does. SDL stamps key events when it reads them, not when they happened: on a loop busy
+# drawing for seconds (TCG on a loaded host) a press and release read together look instant, and a
+# chord held for a fixed time went unseen. Returns the wait's status; the keys are released
+# whatever it is.
+chord_until() {
+  local rc=0
+  dev key ctrl down && dev key alt down && dev key s down || rc=1
+  [ $rc = 0 ] && { wait_journal "$1" || rc=1; }
+  dev key s up; dev key alt up; dev key ctrl up
+  return $rc
+}
 shot_acked() { [ -s "$out/ack/$1" ]; }
 shot() {  # shot NAME WHAT...: the host takes screenshots until one shows WHAT
   local name=$1
@@ -309,8 +321,7 @@ until_true "watchdog ping after the restart" pinged_since "$w1"
 # --- 7. devices unplugged and back: a warning line, a staff-panel line, working again
 kiosk_steady
 mark_journal
-dev chord 2.5
-judge staff_panel_opens "journal: staff panel opened" wait_journal 'staff panel opened'
+judge staff_panel_opens "journal: staff panel opened" chord_until 'staff panel opened'
 # The panel's amber title is on screen.
 shot panel amber-min 500
 for device in pen board; do
@@ -326,8 +337,7 @@ for device in pen board; do
   shot "panel_${device}_back" amber-below "panel_${device}_lost" 200
 done
 mark_journal
-dev chord 2.5
-wait_journal 'staff panel closed'
+judge staff_panel_closes "journal: staff panel closed" chord_until 'staff panel closed'
 # After the replug the pen strokes again and the board switches again.
 leave_attract
 mark stroke2_down
