@@ -35,9 +35,9 @@
 // strokes again at the new gains until it converges (within 0.05 dB).
 //
 // The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
-// transducer's band (glass: all above 3 kHz) vibrates only with the contact's low-frequency
-// content, which between its cracks is next to nothing; measured on the sustained stroke (without
-// the landing click) its gain reaches the cap. The cap only stops a broken material from getting
+// transducer's band (a glass tile whose modes all lie above 3 kHz) vibrates only with the
+// contact's low-frequency content, which between its cracks is next to nothing; measured on the
+// sustained stroke (without the landing click) its gain would reach the cap. The cap only stops a broken material from getting
 // an absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
 // anyway); a capped texture vibrates weaker than the others on average and its [levels] say so,
 // so the per-stroke correction (up to stroke_gain.h's limit) makes up the difference stroke by

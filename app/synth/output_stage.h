@@ -57,8 +57,8 @@ std::array<Biquad, 2> KWeighting(double fs);
 
 // Slow level control of one channel (see the stroke leveller above): cap is a K-weighted RMS
 // (BS.1770: 10^((LUFS + 0.691) / 20) for a cap in LUFS), 0 = off. The detector hears the sound as
-// the loudness measure does, so a bright sound (broken glass: modes above 3 kHz, where the shelf
-// adds 4 dB) is held to the same loudness as a dull one, not to the same RMS.
+// the loudness measure does, so a bright sound (broken glass: most modes above 2 kHz, where the
+// shelf adds up to 4 dB) is held to the same loudness as a dull one, not to the same RMS.
 struct Leveller {
   double cap_square = 0.0;
   double level_square = 0.0;  // running mean square of the K-weighted input

@@ -487,7 +487,7 @@ struct Scene::Impl {
     const double pickup = modes.PickupVelocity();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
     // The stylus carries the contact force to the hand whether or not the surface rings in the
-    // transducer's band (glass: all modes above 3 kHz): as the velocity that force gives the
+    // transducer's band (glass: modes from 683 Hz, most above 800 Hz): as the velocity that force gives the
     // probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive (Verrillo,
     // JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its fluctuation.
     const double felt = probe.active ? (probe.normal_n + probe.friction_n) * felt_per_newton : 0.0;
