@@ -13,7 +13,6 @@ namespace sas::kiosk {
 namespace {
 
 constexpr const char* kColumns[] = {"t", "x", "y", "pressure", "tilt"};
-constexpr double kPenUpPressure = 1e-3;  // below this the pen is not touching (sensor noise)
 constexpr double kMaxCoordinateMm = 2000.0;
 
 std::string Trim(const std::string& text) {
@@ -202,6 +201,26 @@ std::optional<Gesture> FindBuiltinGesture(const std::string& name) {
   return std::nullopt;
 }
 
+GestureSample GestureAt(const Gesture& gesture, double t_s) {
+  const auto& rows = gesture.samples;
+  if (rows.empty()) return {};
+  if (t_s <= rows.front().t_s) return rows.front();
+  if (t_s >= rows.back().t_s) return rows.back();
+  const auto next =
+      std::upper_bound(rows.begin(), rows.end(), t_s,
+                       [](double t, const GestureSample& row) { return t < row.t_s; });
+  const GestureSample& a = *(next - 1);
+  const GestureSample& b = *next;
+  const double u = (t_s - a.t_s) / (b.t_s - a.t_s);
+  GestureSample at;
+  at.t_s = t_s;
+  at.x_mm = a.x_mm + u * (b.x_mm - a.x_mm);
+  at.y_mm = a.y_mm + u * (b.y_mm - a.y_mm);
+  at.pressure = a.pressure + u * (b.pressure - a.pressure);
+  at.tilt_deg = a.tilt_deg + u * (b.tilt_deg - a.tilt_deg);
+  return at;
+}
+
 std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const GestureMapping& mapping,
                                             double sample_rate_hz) {
   if (gesture.samples.size() < 2) throw GestureError(gesture.name + ": needs at least two rows");
@@ -237,7 +256,7 @@ std::vector<TimedCommand> GestureToCommands(const Gesture& gesture, const Gestur
     timed.frame = static_cast<std::int64_t>(std::llround(t * sample_rate_hz));
     if (!commands.empty() && timed.frame <= commands.back().frame) continue;
     synth::ProbeCommand& c = timed.command;
-    c.tip_down = t >= rows.front().t_s && pressure > kPenUpPressure;
+    c.tip_down = t >= rows.front().t_s && pressure > kGesturePenUpPressure;
     c.x_m = (a.x_mm + u * dx_mm) * 1e-3;
     c.y_m = (a.y_mm + u * dy_mm) * 1e-3;
     c.velocity_mps = length_mm * 1e-3 / span_s;

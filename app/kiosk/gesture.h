@@ -49,6 +49,13 @@ struct Gesture {
   double duration_s() const { return samples.empty() ? 0.0 : samples.back().t_s; }
 };
 
+// Below this pressure a gesture's pen is not touching (sensor noise).
+inline constexpr double kGesturePenUpPressure = 1e-3;
+
+// The gesture at `t_s`: its rows interpolated linearly, held at the first row before it and at the
+// last row after it.
+GestureSample GestureAt(const Gesture& gesture, double t_s);
+
 // A probe command at an absolute frame of the rendering (frame 0 = gesture time 0).
 struct TimedCommand {
   std::int64_t frame = 0;

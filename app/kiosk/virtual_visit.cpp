@@ -23,6 +23,25 @@ PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int
   };
 }
 
+PenScript GesturePenScript(Gesture gesture, const KioskEngine& engine, double t0_s,
+                           std::optional<synth::ProbeStyle> style) {
+  return [gesture = std::move(gesture), engine = &engine, t0_s,
+          style](double t_s) -> std::optional<ScriptedPen> {
+    const double since_s = t_s - t0_s;
+    if (since_s < 0.0) return std::nullopt;
+    const GestureSample at = GestureAt(gesture, since_s);
+    const double pitch_mm = engine->current_field()->pitch_m() * 1e3;
+    platform::PenReading pen;
+    pen.origin = platform::PenOrigin::kTablet;
+    engine->FieldToScreen(at.x_mm / pitch_mm, at.y_mm / pitch_mm, &pen.x_px, &pen.y_px);
+    pen.tip_down = since_s < gesture.duration_s() && at.pressure > kGesturePenUpPressure;
+    pen.in_proximity = true;
+    pen.pressure = pen.tip_down ? at.pressure : 0.0;
+    pen.tilt_x_deg = at.tilt_deg;
+    return ScriptedPen{pen, style};
+  };
+}
+
 VirtualVisit::VirtualVisit(KioskEngine& engine, Hooks hooks, bool keep_output, double pen_rate_hz)
     : engine_(engine),
       hooks_(std::move(hooks)),

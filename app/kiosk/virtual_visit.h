@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "kiosk/device_configs.h"
+#include "kiosk/gesture.h"
 #include "kiosk/kiosk_engine.h"
 #include "platform/audio/audio_input.h"
 #include "platform/audio/audio_output.h"
@@ -51,6 +52,15 @@ struct PenStroke {
 // (its tilt counts, leaning along x), hovering until t0 + hover_s, tip down for duration_s from
 // then, then lifted at the end point with pressure 0.
 PenScript StraightStroke(const PenStroke& stroke, double t0_s, int width_px, int height_px);
+
+// The pen reports of `gesture` starting at `t0_s`: a tablet in range from t0 on, at the gesture's
+// rows interpolated at each report, tip down while the gesture presses (kGesturePenUpPressure),
+// lifted at its last point once it has ended. The gesture's millimetres are on the field under the
+// pen (its top-left sample at 0, 0) and reach the screen through engine.FieldToScreen, so the pen
+// lands where the gesture says on the field the kiosk plays (the picture covers the screen: a
+// gesture off the shown crop is off the screen). `engine` must outlive the script.
+PenScript GesturePenScript(Gesture gesture, const KioskEngine& engine, double t0_s,
+                           std::optional<synth::ProbeStyle> style = {});
 
 class VirtualVisit {
  public:

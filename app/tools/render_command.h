@@ -1,13 +1,23 @@
 #pragma once
-// The offline renderer behind `sketch-a-scratch render`: a material (TOML file found by name), a
-// surface (built-in profile, kiosk texture file or picture) and a gesture (built-in or CSV) go
-// through the same synth::Scene the kiosk plays live, block by block with commands placed on their
-// exact frames, and come out as a 2-channel WAV (ch 1 sound, ch 2 haptic) plus a one-line summary.
+// The offline renderer behind `sketch-a-scratch render`, a 2-channel WAV (ch 1 sound, ch 2 haptic)
+// plus a one-line summary, in two ways:
+// - What the kiosk plays: `--texture NAME|FOLDER|texture.toml` or `--voice take.wav` runs the
+//   kiosk engine itself on its virtual clock (kiosk/virtual_visit.h), started on that texture (or,
+//   for a voice, after the take went through the record button, the recorder and the voice
+//   surface): the picture's relief, the bubble state and its pops, the texture's material and
+//   gains, the configuration's gains (--config, else the defaults), the per-stroke level matching
+//   and the final safety stage. The gesture's millimetres are on the texture's field and become
+//   pen reports on the kiosk's 1920 x 1080 screen at a tablet's 200 Hz. No spoken cues.
+// - A material on a test surface: `--profile` (a built-in profile or a picture), or a texture's
+//   generator height map with `--texture NAME --true-height`, through a bare synth::Scene, block
+//   by block with commands placed on their exact frames, at 0 dB gains and without the safety
+//   stage.
 //
-//   sketch-a-scratch render --material wood --profile grating --gesture "slow stroke"
-//                           --out out.wav [--fs 48000] [--tail-s 2] [--materials-dir DIR]
-//                           [--format float|pcm24] [--style auto|scrape|rub|roll]
-//                           [--gain-db 0] [--haptic-gain-db 0] [--normalize] [--sweep-mps V]
+//   sketch-a-scratch render (--texture NAME [--true-height] | --voice FILE | --profile P
+//                           [--material M]) [--gesture G] --out out.wav [--fs 48000] [--tail-s 2]
+//                           [--config kiosk.toml] [--materials-dir DIR] [--format float|pcm24]
+//                           [--style auto|scrape|rub|roll] [--gain-db 0] [--haptic-gain-db 0]
+//                           [--normalize] [--sweep-mps V]
 //
 // Materials are looked up by name in, in order: --materials-dir, $SAS_DATA_DIR/materials, the
 // source tree's textures/materials, <install prefix>/share/sketch-a-scratch/materials; the first
@@ -32,8 +42,14 @@ class RenderError : public std::runtime_error {
 };
 
 struct RenderOptions {
-  std::string material;  // empty: the texture file's material (--profile X.toml), else "wood"
-  std::string profile = "grating";      // built-in name, texture.toml or picture file
+  std::string material;             // empty: the texture's material (--true-height), else "wood"
+  std::string profile = "grating";  // built-in name or picture file
+  // A kiosk texture (name, folder holding texture.toml, or the file): played by the kiosk engine,
+  // or with true_height its generator height map through a bare scene.
+  std::string texture;
+  bool true_height = false;
+  std::string voice_path;   // a recording (WAV, FLAC, OGG) made the voice surface by the kiosk
+  std::string config_path;  // kiosk.toml for the kiosk engine's gains; empty: the defaults
   std::string gesture = "slow stroke";  // built-in name or CSV file
   // The passive mode at a set velocity (m/s): with gesture "passive sweep", replaces its 5 cm/s.
   std::optional<double> sweep_mps;
@@ -48,7 +64,10 @@ struct RenderOptions {
   // Scale each channel after rendering so its peak is at -1 dBFS (for listening to quiet
   // renders; the synth's own scale is 1 m/s pickup velocity = full scale).
   bool normalize = false;
-  int block_frames = 256;  // the scene's block size (output does not depend on it)
+  int block_frames = 256;  // the bare scene's block size (output does not depend on it)
+
+  // Whether the kiosk engine plays the render (texture without true_height, or a voice).
+  bool ThroughKiosk() const { return !voice_path.empty() || (!texture.empty() && !true_height); }
 };
 
 struct ChannelStats {

@@ -45,7 +45,7 @@ expect 2 "bogus" bogus
 expect 2 "--out" --out
 expect 2 "--fs" render --out x.wav --fs 1e30
 expect 2 "--mass" impact --mass nan
-expect 0 "glass on broken_glass" render --profile broken_glass --gesture tap --tail-s 0.1 --out g.wav
+expect 0 "glass on broken_glass" render --texture broken_glass --gesture tap --tail-s 0.1 --out g.wav
 expect 1 "no display" kiosk
 expect 1 "no display" --kiosk --config /nonexistent.toml
 [ -z "$(ls -A "$HOME")" ] || { echo "FAIL: the kiosk wrote into HOME: $(find "$HOME")"; failures=$((failures + 1)); }

@@ -373,7 +373,7 @@ TEST_CASE("render --help prints the options, kiosk texture names among them, and
 
 TEST_CASE("render takes a kiosk texture by the name its help offers", "[render]") {
   sas::test::TempDir dir;
-  const auto result = Run({"--profile", "broken_glass", "--gesture", "tap", "--tail-s", "0.1",
+  const auto result = Run({"--texture", "broken_glass", "--gesture", "tap", "--tail-s", "0.1",
                            "--out", dir.file("glass.wav")});
   INFO(result.err);
   CHECK(result.code == 0);
@@ -404,11 +404,12 @@ TEST_CASE("a gesture CSV file drives the render", "[render]") {
   CHECK(PeakBetween(wav.channel[0], 48000.0, 0.05, 0.3) > 1e-4);
 }
 
-TEST_CASE("a kiosk texture file as the profile brings its own material unless one is given",
+TEST_CASE("a texture's true height map brings the texture's material unless one is given",
           "[render]") {
   sas::test::TempDir dir;
   RenderOptions options;
-  options.profile = std::string(sas::kSourceDir) + "/textures/bubble_wrap/texture.toml";
+  options.texture = std::string(sas::kSourceDir) + "/textures/bubble_wrap/texture.toml";
+  options.true_height = true;
   options.gesture = dir.Write("stroke.csv", kShortStroke);
   options.tail_s = 0.05;
   options.out_path = dir.file("t.wav");
