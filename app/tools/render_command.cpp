@@ -407,6 +407,7 @@ void RenderThroughKiosk(const RenderOptions& options, const Gesture& gesture,
                 GesturePenScript(gesture, engine, visit.now_s(), options.style));
   summary.compute_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.popped_bubbles = engine.surface().voice ? 0 : engine.popped_bubbles();
   audio.assign(visit.output().begin(),
                visit.output().begin() + static_cast<std::ptrdiff_t>(total_frames) * 2);
 }
@@ -497,13 +498,17 @@ std::string FormatSummary(const RenderOptions& options, const RenderSummary& sum
     std::snprintf(normalized, sizeof normalized, " | normalized %+.1f dB / %+.1f dB",
                   Db(summary.normalize_gain[0]), Db(summary.normalize_gain[1]));
   }
-  char text[640];
+  char popped[48] = "";
+  if (summary.popped_bubbles > 0) {
+    std::snprintf(popped, sizeof popped, ", %d bubbles popped", summary.popped_bubbles);
+  }
+  char text[700];
   std::snprintf(
       text, sizeof text,
-      "%s: %.2f s (gesture %.2f s) at %d Hz, %s on %s, %s | sound peak %s rms %s | "
+      "%s: %.2f s (gesture %.2f s) at %d Hz, %s on %s, %s%s | sound peak %s rms %s | "
       "haptic peak %s rms %s | last 100 ms %s%s | real-time factor %.4f",
       options.out_path.c_str(), summary.duration_s, summary.gesture_s, options.sample_rate_hz,
-      summary.material_file.c_str(), SurfaceLabel(options).c_str(), options.gesture.c_str(),
+      summary.material_file.c_str(), SurfaceLabel(options).c_str(), options.gesture.c_str(), popped,
       FormatDb(summary.channels[0].peak).c_str(), FormatDb(summary.channels[0].rms).c_str(),
       FormatDb(summary.channels[1].peak).c_str(), FormatDb(summary.channels[1].rms).c_str(),
       FormatDb(summary.tail_end_peak).c_str(), normalized, summary.realtime_factor);

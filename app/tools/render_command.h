@@ -84,6 +84,8 @@ struct RenderSummary {
   double tail_end_peak = 0.0;             // max |sample| over both channels in the last 100 ms
   double compute_s = 0.0;                 // wall time spent in Scene::Process
   double realtime_factor = 0.0;           // compute_s / duration_s (< 1: faster than real time)
+  // Through the kiosk on bubble wrap: the bubbles the gesture popped (the kiosk's bubble state).
+  int popped_bubbles = 0;
   std::vector<std::string> warnings;
 };
 

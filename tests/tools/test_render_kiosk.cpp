@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "files/kiosk_config.h"
@@ -29,6 +30,7 @@ namespace {
 using sas::kiosk::KioskEngine;
 using sas::kiosk::KioskEngineOptions;
 using sas::kiosk::PenStroke;
+using sas::kiosk::RenderOptions;
 using sas::kiosk::VirtualVisit;
 
 constexpr int kWidthPx = 1920;
@@ -232,4 +234,26 @@ TEST_CASE("render --texture plays the picture's relief and --true-height the gen
   const Comparison cmp = Compare(kiosk, bare);
   INFO("largest difference " << cmp.max_difference[0] << " at peak " << cmp.peak[0]);
   CHECK(cmp.max_difference[0] > 0.1 * cmp.peak[0]);
+}
+
+TEST_CASE("render --texture bubble_wrap pops bubbles under a firm press and none under a light one",
+          "[render]") {
+  sas::test::TempDir dir;
+  const auto run = [&](double pressure) {
+    char csv[160];
+    std::snprintf(csv, sizeof csv, "t,x,y,pressure,tilt\n0,40,40,%g,0\n1,80,60,%g,0\n", pressure,
+                  pressure);
+    RenderOptions options =
+        sas::kiosk::ParseRenderArgs({"--texture", "bubble_wrap", "--gesture",
+                                     dir.Write("g.csv", csv), "--tail-s", "0.2", "--out", "b.wav"});
+    std::vector<float> audio;
+    const auto summary = sas::kiosk::RenderToMemory(options, audio);
+    return std::make_pair(summary, sas::kiosk::FormatSummary(options, summary));
+  };
+  const auto [firm, firm_text] = run(0.95);
+  CHECK(firm.popped_bubbles >= 1);
+  CHECK_THAT(firm_text, Catch::Contains("bubbles popped"));
+  const auto [light, light_text] = run(0.2);
+  CHECK(light.popped_bubbles == 0);
+  CHECK_THAT(light_text, !Catch::Contains("popped"));
 }
