@@ -10,6 +10,8 @@
 #   gpio-sim.sh chatter LABEL LINE_OFFSET N   N alternating pulls as fast as the shell writes,
 #                                             the last one down (a token placed on chattering ink)
 #   gpio-sim.sh value LABEL LINE_OFFSET       the line's value as the chip sees it (0 or 1)
+#   gpio-sim.sh press LABEL LINE_OFFSET SECONDS   a button pressed (pulled down) for SECONDS, then
+#                                             released; prints how long it really was held
 #
 # Needs only bash and the kernel's sysfs and configfs (the guest has no libgpiod tools). Exits
 # non-zero with a message on failure.
@@ -18,7 +20,7 @@ set -uo pipefail
 die() { echo "gpio-sim.sh: $*" >&2; exit 1; }
 usage() {
   echo "usage: gpio-sim.sh setup KO_PATH LABEL NAME... | pull LABEL LINE_OFFSET up|down |" \
-    "chatter LABEL LINE_OFFSET N | value LABEL LINE_OFFSET" >&2
+    "chatter LABEL LINE_OFFSET N | press LABEL LINE_OFFSET SECONDS | value LABEL LINE_OFFSET" >&2
   exit 2
 }
 config=/sys/kernel/config
@@ -123,6 +125,28 @@ pull() {
   esac
 }
 
+# A visitor's press is its own length of time, not a wait for an event: the kiosk judges a press
+# on the kernel's edge timestamps (shorter than the debounce: a glitch; longer than the long hold:
+# a cancel), so the press is held for a set time from the moment the chip reads the line low, and
+# the length it really had is printed for the report. The file stays open: no fork between the
+# two writes.
+press() {
+  [ $# -eq 3 ] || usage
+  local line
+  line=$(line_dir "$1" "$2") || exit 1
+  exec {fd}>"$line/pull" || die "cannot open $line/pull"
+  echo pull-down >&"$fd" || die "cannot write $line/pull"
+  local start=$EPOCHREALTIME
+  wait_for 60 value_is "$line" 0 || die "line $2 did not read low after pull-down"
+  sleep "$3"
+  echo pull-up >&"$fd" || die "cannot write $line/pull"
+  local end=$EPOCHREALTIME
+  exec {fd}>&-
+  echo "press: line $2 held $(( (${end//[.,]/} - ${start//[.,]/}) / 1000 )) ms"
+}
+
+value_is() { [ "$(cat "$1/value")" = "$2" ]; }
+
 chatter() {
   [ $# -eq 3 ] || usage
   local line n=$3 i
@@ -155,6 +179,7 @@ case "$command" in
   setup) setup "$@" ;;
   pull) pull "$@" ;;
   chatter) chatter "$@" ;;
+  press) press "$@" ;;
   value) value "$@" ;;
   *) usage ;;
 esac
