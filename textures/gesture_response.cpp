@@ -190,22 +190,42 @@ int main(int argc, char** argv) {
     md << "\nFailing:\n\n";
     for (const auto& f : failures) md << "- " << f.text << "\n";
     if (failures.empty()) md << "- none\n";
-    md << "\n## The grid\n\n";
     char line[256];
+    md << "\n## Character\n\nWhat makes a texture gritty, tonal or clicky, on a 100 mm/s "
+          "scrape (calibration/character.h): spectral flatness of the sound between 100 Hz and "
+          "10 kHz (Welch PSD, geometric over arithmetic mean: 1 for white noise, near 0 for a "
+          "few tones), its crest factor and its onsets per second (5 ms frames rising 6 dB over "
+          "the 30 ms before).\n\n| surface | pressure | flatness | crest, dB | onsets/s |\n"
+          "|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      for (const auto& c : grids[i]) {
+        if (c.stroke.style != sas::synth::ProbeStyle::kScrape || c.stroke.speed_mm_s != 100.0) {
+          continue;
+        }
+        std::snprintf(line, sizeof line, "| %s | %.1f | %.3f | %.1f | %.0f |\n",
+                      names[i].c_str(), c.stroke.pressure, c.response.flatness,
+                      c.response.crest_db, c.response.onsets_per_s);
+        md << line;
+      }
+    }
+    md << "\n## The grid\n\n";
     for (std::size_t i = 0; i < names.size(); ++i) {
       md << "### " << names[i]
          << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB "
-            "| centroid, Hz | relief alone, dB | relief alone's centroid, Hz |\n"
-            "|---|---|---|---|---|---|---|---|\n";
+            "| centroid, Hz | relief alone, dB | relief alone's centroid, Hz | flatness "
+            "| crest, dB | onsets/s |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
         const bool relief_heard = c.response.relief_db >= sas::kiosk::kPrintFloorDb;
-        std::snprintf(line, sizeof line, "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %s | %s |\n",
+        std::snprintf(line, sizeof line,
+                      "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %s | %s | %.3f | %.1f | %.0f |\n",
                       sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
                       c.stroke.pressure, c.response.sound_db, c.response.haptic_db,
                       c.response.centroid_hz, sas::kiosk::LevelText(c.response.relief_db).c_str(),
                       relief_heard
                           ? std::to_string(std::lround(c.response.relief_centroid_hz)).c_str()
-                          : "-");
+                          : "-",
+                      c.response.flatness, c.response.crest_db, c.response.onsets_per_s);
         md << line;
       }
       md << "\n";

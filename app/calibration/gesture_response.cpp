@@ -10,6 +10,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "calibration/character.h"
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/pen_mapping.h"
@@ -159,10 +160,11 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
                              double fs_hz) {
   const double width_mm = surface.field->width() * surface.field->pitch_m() * 1e3;
   const double height_mm = surface.field->height() * surface.field->pitch_m() * 1e3;
-  // The relief alone: no friction (nor its noise) and no micro-roughness.
+  // The relief alone: no friction (nor its noise), no micro-roughness, no crumbling.
   ResponseSurface relief = surface;
   relief.material.friction.enabled = false;
   relief.material.roughness.enabled = false;
+  relief.material.crumble.enabled = false;
   StrokeResponse mean;
   mean.sound_db = mean.haptic_db = mean.relief_db = 0.0;
   places = std::max(places, 1);
@@ -186,6 +188,9 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
     Spectrum(relief_span.sound, fs_hz, &relief_one);
     mean.relief_centroid_hz += relief_one.centroid_hz / places;
     mean.centroid_hz += one.centroid_hz / places;
+    mean.flatness += SpectralFlatness(span.sound, fs_hz) / places;
+    mean.crest_db += CrestFactorDb(span.sound) / places;
+    mean.onsets_per_s += OnsetRatePerS(span.sound, fs_hz) / places;
     for (std::size_t b = 0; b < mean.band_db.size(); ++b)
       mean.band_db[b] += one.band_db[b] / places;
   }

@@ -54,11 +54,16 @@ struct StrokeResponse {
   double centroid_hz = 0.0;   // power-weighted mean frequency of channel 1, 20 Hz .. 20 kHz
   // Channel 1's band levels (dB) relative to its total level: the spectrum's shape alone.
   std::array<double, kThirdOctaveBands> band_db{};
-  // Channel 1's RMS for the same stroke with the relief alone (friction and the material's
-  // micro-roughness off): how much of the sound the felt profile itself makes.
+  // Channel 1's RMS for the same stroke with the relief alone (friction, the material's
+  // micro-roughness and its crumbling crust off): how much of the sound the felt profile itself makes.
   double relief_db = -300.0;
   // The relief alone's centroid: whether the felt profile on its own brightens with speed.
   double relief_centroid_hz = 0.0;
+  // Channel 1's character (calibration/character.h): spectral flatness 100 Hz - 10 kHz, crest
+  // factor (dB) and onsets per second.
+  double flatness = 0.0;
+  double crest_db = 0.0;
+  double onsets_per_s = 0.0;
 };
 
 inline constexpr double kRestS = 0.15;

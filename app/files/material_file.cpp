@@ -162,6 +162,24 @@ const std::vector<KeySpec<synth::RoughnessParams>>& RoughnessKeys() {
   return keys;
 }
 
+// A crumbling crust (synth::CrumbleParams, synth/crumble.h).
+const std::vector<KeySpec<synth::CrumbleParams>>& CrumbleKeys() {
+  using C = synth::CrumbleParams;
+  static const std::vector<KeySpec<C>> keys = {
+      {"grain_spacing_m", Real(&C::grain_spacing_m, 1e-5, 0.1)},
+      {"strength_n", Real(&C::strength_n, 1e-3, 100.0)},
+      {"weibull_modulus", Real(&C::weibull_modulus, 0.5, 20.0)},
+      {"flake_low_hz", Real(&C::flake_low_hz, 20.0, kMaxModeFrequencyHz)},
+      {"flake_high_hz", Real(&C::flake_high_hz, 20.0, kMaxModeFrequencyHz)},
+      {"size_exponent", Real(&C::size_exponent, 0.5, 4.0)},
+      {"flake_mass_kg", Real(&C::flake_mass_kg, 1e-7, 1.0)},
+      {"flake_speed_ratio", Real(&C::flake_speed_ratio, 0.0, 10.0)},
+      {"flake_loss_factor", Real(&C::flake_loss_factor, 1e-3, 1.0)},
+      {"flake_gain", Real(&C::flake_gain, 0.0, 100.0)},
+  };
+  return keys;
+}
+
 const std::vector<KeySpec<synth::ModeParams>>& ModeKeys() {
   using M = synth::ModeParams;
   static const std::vector<KeySpec<M>> keys = {
@@ -276,10 +294,10 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
   for (const auto& [key, node] : root) {
     const std::string_view k = key.str();
     if (k != "description" && k != "probe" && k != "impact" && k != "friction" && k != "modes" &&
-        k != "roughness") {
+        k != "roughness" && k != "crumble") {
       throw MaterialError(Where(source_name, LineOf(node), std::string(k)) +
                           "unknown key (expected description, [probe], [impact], [friction], "
-                          "[roughness], modes)");
+                          "[roughness], [crumble], modes)");
     }
   }
 
@@ -319,6 +337,17 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
     ApplyTable(RequireTable(root, "roughness", source_name), "roughness", RoughnessKeys(),
                material.params.roughness, source_name);
     material.params.roughness.enabled = true;
+  }
+  // Optional: a material without [crumble] does not break under the tip.
+  if (root.get("crumble") != nullptr) {
+    const toml::table& crumble = RequireTable(root, "crumble", source_name);
+    ApplyTable(crumble, "crumble", CrumbleKeys(), material.params.crumble, source_name);
+    if (material.params.crumble.flake_low_hz > material.params.crumble.flake_high_hz) {
+      throw MaterialError(Where(source_name, LineOf(*crumble.get("flake_low_hz")),
+                                "crumble.flake_low_hz") +
+                          "must not exceed crumble.flake_high_hz");
+    }
+    material.params.crumble.enabled = true;
   }
   return material;
 }

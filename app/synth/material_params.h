@@ -120,12 +120,29 @@ struct RoughnessParams {
   double length_m = 1e-4;
 };
 
+// A crust that crumbles under the tip (synth/crumble.h): grains along the stroke break under the
+// tip's load, each freeing a loose flake that rings. Off unless the material has [crumble].
+struct CrumbleParams {
+  bool enabled = false;
+  double grain_spacing_m = 5e-4;  // mean path between grains the tip meets
+  double strength_n = 0.5;        // Weibull scale of a grain's breaking load (63 % break)
+  double weibull_modulus = 3.0;   // spread of the grains' strengths
+  double flake_low_hz = 2000.0;   // ring of the largest flake ...
+  double flake_high_hz = 12000.0;  // ... and of the smallest
+  double size_exponent = 2.5;      // fragment sizes: N(> a) ∝ a^-D
+  double flake_mass_kg = 2e-3;     // mass of the largest flake
+  double flake_speed_ratio = 0.2;  // a breaking grain's flake's speed over the tip's
+  double flake_loss_factor = 0.15;  // η of a flake's ring
+  double flake_gain = 0.2;          // pickup weight of a flake's ring
+};
+
 struct MaterialParams {
   ResonatorParams resonator;
   ImpactParams impact;
   FrictionParams friction;
   ProbeParams probe;
   RoughnessParams roughness;
+  CrumbleParams crumble;
 };
 
 }  // namespace sas::synth

@@ -98,6 +98,19 @@ struct ModalState {
     free_motion_map = -1;  // at rest the free motion is 0 for every map
   }
 
+  // An impulse (N s, up = positive) on the resonator at the contact point, too brief for a
+  // step to resolve: every mode's velocity jumps by impulse / mass. Keeps the cached sums.
+  void Kick(double impulse_n_s) {
+    for (int i = 0; i < count; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double dv = impulse_n_s / mass[k];
+      v[k] += dv;
+      contact_velocity += dv;
+      pickup_velocity += gain[k] * dv;
+    }
+    free_motion_map = -2;  // the cached free motion was for the old velocities
+  }
+
   double ContactDisplacement() const { return contact_displacement; }
   double ContactVelocity() const {  // Σ q', the surface's velocity at the contact point
     return contact_velocity;

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "synth/contact_kernel.h"
+#include "synth/crumble.h"
 #include "synth/output_stage.h"
 #include "synth/surface_reader.h"
 
@@ -86,6 +87,7 @@ struct Scene::Impl {
   ModalState modes{};
   ProbeDynamics probe{};
   SurfaceReader reader{};
+  CrumbleSource crumble{};
   OutputStage output{};
   // Written by the control thread (Scene::SetLowVibration), read once per block by Process().
   std::atomic<bool> low_vibration{false};
@@ -164,6 +166,7 @@ struct Scene::Impl {
 
   void Reset() {
     modes.Reset();
+    crumble.Reset();
     pending = 0;
     probe = ProbeDynamics{};
     // A reset scene is silent: the transducer trim may jump to the requested mode at once.
@@ -200,7 +203,9 @@ struct Scene::Impl {
   bool Silent() const {
     if (probe.active) return false;
     constexpr double kThreshold = 0.5 * kIdleSilence;
-    return modes.PickupAmplitudeBound() * output_gain * stroke_bound < kThreshold &&
+    return (modes.PickupAmplitudeBound() + crumble.AmplitudeBound()) * output_gain *
+                   stroke_bound <
+               kThreshold &&
            output.FilterActivity() < kThreshold;
   }
 
@@ -467,6 +472,13 @@ struct Scene::Impl {
       if (friction_skipped) drive.friction_share = 0.0;  // the kernel neither solves nor stores it
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
+      // A grain of a crumbling crust broke under the tip: its flake flies off, the crust takes
+      // the reaction (down).
+      if (crumble.enabled() && drive.slide_velocity_mps > 0.0) {
+        const double impulse =
+            crumble.Slide(drive.slide_velocity_mps / fs, std::max(probe.normal_n, 0.0));
+        if (impulse > 0.0) modes.Kick(-impulse);
+      }
       // Last line of defence against absurd input: a non-finite probe is parked, never kept.
       if (!std::isfinite(probe.height_m + probe.velocity_mps + probe.bristle_m + probe.normal_n +
                          probe.friction_n)) {
@@ -484,7 +496,7 @@ struct Scene::Impl {
     } else {
       AdvanceModes(modes, modes.full, 0.0);
     }
-    const double pickup = modes.PickupVelocity();
+    const double pickup = modes.PickupVelocity() + crumble.Ring();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
     // The stylus carries the contact force to the hand whether or not the surface rings in the
     // transducer's band (glass: modes from 683 Hz, most above 800 Hz): as the velocity that force gives the
@@ -548,6 +560,7 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.adaptive = adaptive && s.modes.level_count > 1;
   s.config.SetLevels(m.impact, s.modes, s.fs);
   s.reader.Prepare(surface);
+  s.crumble.Prepare(m.crumble, s.fs);
   s.output.Prepare(output, s.fs);
   s.low_vibration.store(output.low_vibration, std::memory_order_relaxed);
   s.output_gain = std::max(
@@ -620,6 +633,7 @@ void Scene::Process(const ProbeCommand* commands, int command_count, float* inte
       s.FlushOutput();
       if (s.skips.idle_blocks && !s.idle && s.Silent()) {
         s.modes.Reset();
+        s.crumble.Silence();
         s.output.Reset();
         s.idle = true;
       }

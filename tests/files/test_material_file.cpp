@@ -346,6 +346,40 @@ TEST_CASE("the optional [roughness] table reaches the synth and is checked like 
                     Catch::Contains("m.toml:29: roughness.grit: unknown key"));
 }
 
+TEST_CASE("the optional [crumble] table reaches the synth and is checked like the others",
+          "[kiosk]") {
+  CHECK_FALSE(Parse(kValid).params.crumble.enabled);
+  const std::string table =
+      "[crumble]\ngrain_spacing_m = 4e-4\nstrength_n = 0.7\nweibull_modulus = 2.5\n"
+      "flake_low_hz = 1500\nflake_high_hz = 9000\nsize_exponent = 2.2\nflake_mass_kg = 2e-3\n"
+      "flake_speed_ratio = 0.3\nflake_loss_factor = 0.1\nflake_gain = 0.25\n";
+  const auto& c = Parse(std::string(kValid) + table).params.crumble;
+  CHECK(c.enabled);
+  CHECK(c.grain_spacing_m == 4e-4);
+  CHECK(c.strength_n == 0.7);
+  CHECK(c.weibull_modulus == 2.5);
+  CHECK(c.flake_low_hz == 1500.0);
+  CHECK(c.flake_high_hz == 9000.0);
+  CHECK(c.size_exponent == 2.2);
+  CHECK(c.flake_mass_kg == 2e-3);
+  CHECK(c.flake_speed_ratio == 0.3);
+  CHECK(c.flake_loss_factor == 0.1);
+  CHECK(c.flake_gain == 0.25);
+  // Line 26 is [crumble], 27 grain_spacing_m, ..., 30 flake_low_hz.
+  std::string swapped = table;
+  swapped.replace(swapped.find("flake_low_hz = 1500"), 19, "flake_low_hz = 9500");
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + swapped),
+                    Catch::Contains("m.toml:30: crumble.flake_low_hz: must not exceed"));
+  std::string zero = table;
+  zero.replace(zero.find("grain_spacing_m = 4e-4"), 22, "grain_spacing_m = 0");
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + zero),
+                    Catch::Contains("m.toml:27: crumble.grain_spacing_m"));
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + "[crumble]\ngrain_spacing_m = 4e-4\n"),
+                    Catch::Contains("m.toml:26: crumble.strength_n: missing key"));
+  CHECK_THROWS_WITH(Parse(std::string(kValid) + table + "dust = 1\n"),
+                    Catch::Contains("m.toml:37: crumble.dust: unknown key"));
+}
+
 TEST_CASE(
     "a material that rings loud for seconds after a tap is refused naming the mode while the "
     "shipped ones die away",
