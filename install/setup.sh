@@ -68,6 +68,14 @@ build() {  # build <dir> <cmake args...>
 }
 
 phase "packages ready"
+image_pid=""
+if [ "$mode" = test ]; then
+  # The boot test's base image (a Debian 12 system made with mmdebstrap, cached) is made while the
+  # product compiles: much of it is downloading and unpacking, which the compiler's wait covers.
+  image_log="$(mktemp /tmp/sas-base-image.XXXXXX)"
+  as_root bash "$repo/tests/appliance/boot-test.sh" --prepare-image >"$image_log" 2>&1 &
+  image_pid=$!
+fi
 build build
 phase "build done"
 case "$mode" in
@@ -81,6 +89,13 @@ case "$mode" in
     # and the whole run took longer than in sequence.
     (cd "$repo/build" && ctest --output-on-failure -j "$jobs")
     phase "build tree's tests done"
+    if wait "$image_pid"; then
+      phase "$(tail -1 "$image_log")"
+    else  # the boot test makes it again, and says why if it cannot
+      cat "$image_log"
+      phase "the boot test's base image was not made beforehand"
+    fi
+    rm -f "$image_log"
     # The installed product: the .deb booted under systemd in a VM (tests/appliance/boot-test.sh).
     as_root bash "$repo/tests/appliance/boot-test.sh" --build-dir "$repo/build"
     phase "appliance boot test done"

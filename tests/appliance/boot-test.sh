@@ -12,6 +12,11 @@
 #
 #   sudo bash tests/appliance/boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs]
 #                                          [--load N]
+#   sudo bash tests/appliance/boot-test.sh --prepare-image [--cache DIR]
+#
+# --prepare-image only makes the cached base image (below) if it is not there, and needs no build:
+# install/setup.sh runs it while the product compiles, so that its downloads and unpacking overlap
+# the compiler instead of following it.
 #
 # Nothing here or in the guest waits a fixed time: each step waits for its event (a journal line,
 # a screen that shows what it must, a stretch of the captured sound, a file) with a generous
@@ -33,6 +38,7 @@ build_dir="$repo/build"
 out=""
 cache="${SAS_BOOT_TEST_CACHE:-/var/cache/sketch-a-scratch-boot-test}"
 docs=""
+prepare_only=""
 load="${SAS_BOOT_TEST_LOAD:-0}"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -41,14 +47,41 @@ while [ $# -gt 0 ]; do
     --cache) cache="$2"; shift ;;
     --docs) docs=1 ;;
     --load) load="$2"; shift ;;
-    *) echo "usage: boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs] [--load N]" >&2; exit 2 ;;
+    --prepare-image) prepare_only=1 ;;
+    *) echo "usage: boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs] [--load N] | --prepare-image [--cache DIR]" >&2; exit 2 ;;
   esac
   shift
 done
-build_dir="$(cd "$build_dir" && pwd)" || exit 2
-out="${out:-$build_dir/appliance-report}"
 die() { echo "boot-test: $*" >&2; exit 1; }
 [ "$(id -u)" -eq 0 ] || die "needs root (chroot and image files owned by the guest's users)"
+
+# The cached base: what a Debian 12 box has before the kiosk (systemd, udev, logind, the kernel,
+# ALSA's tools) plus systemd-coredump, so that a core dump would be kept if one were made. Made
+# into a part file and renamed when complete, so a run that was stopped leaves no half image.
+base_packages="systemd,systemd-sysv,udev,dbus,libpam-systemd,linux-image-amd64,kmod,alsa-utils,systemd-coredump,procps"
+key=$(echo "bookworm $base_packages v1" | sha256sum | cut -c1-16)
+base="$cache/base-$key.tar"
+image_cache="cached"
+make_base() {  # make_base LOG: the base image unless it is cached
+  [ -s "$base" ] && return 0
+  mkdir -p "$cache"
+  echo "boot-test: making the base image (no cache at $base)"
+  mmdebstrap --variant=minbase --include="$base_packages" bookworm "$base.part.tar" \
+    http://deb.debian.org/debian >"$1" 2>&1 || { tail -20 "$1"; die "mmdebstrap failed"; }
+  mv "$base.part.tar" "$base"
+  image_cache="built"
+}
+if [ -n "$prepare_only" ]; then
+  command -v mmdebstrap >/dev/null || die "mmdebstrap missing (install/packages.txt, test group)"
+  log="$(mktemp /var/tmp/sas-mmdebstrap.XXXXXX)"
+  make_base "$log"
+  rm -f "$log"
+  echo "boot-test: base image ready: $base ($image_cache)"
+  exit 0
+fi
+
+build_dir="$(cd "$build_dir" && pwd)" || exit 2
+out="${out:-$build_dir/appliance-report}"
 case "$load" in ''|*[!0-9]*) echo "boot-test: --load takes a number of cores" >&2; exit 2 ;; esac
 for tool in qemu-system-x86_64 mmdebstrap mke2fs convert cpack; do
   command -v "$tool" >/dev/null || die "$tool missing (install/packages.txt, test group)"
@@ -123,21 +156,8 @@ espeak-ng -w "$work/speech.wav" "Hello museum, this is my voice, scratch it plea
 cp "$work/control.f32" "$share/control.f32"
 
 # ------------------------------------------------------------------ the image
-# The cached base: what a Debian 12 box has before the kiosk (systemd, udev, logind, the kernel,
-# ALSA's tools) plus systemd-coredump, so that a core dump would be kept if one were made.
-base_packages="systemd,systemd-sysv,udev,dbus,libpam-systemd,linux-image-amd64,kmod,alsa-utils,systemd-coredump,procps"
-key=$(echo "bookworm $base_packages v1" | sha256sum | cut -c1-16)
-base="$cache/base-$key.tar"
-if [ ! -s "$base" ]; then
-  phase "making the base image (no cache at $base)"
-  mmdebstrap --variant=minbase --include="$base_packages" bookworm "$base.part.tar" \
-    http://deb.debian.org/debian >"$work/mmdebstrap.log" 2>&1 ||
-    { tail -20 "$work/mmdebstrap.log"; die "mmdebstrap failed"; }
-  mv "$base.part.tar" "$base"
-  image_cache="built"
-else
-  image_cache="cached"
-fi
+phase "the base image"
+make_base "$work/mmdebstrap.log"
 phase "installing $(basename "$deb") with apt into the image (base $image_cache)"
 mkdir -p "$root"
 tar -C "$root" -xf "$base" || die "cannot unpack $base"
@@ -459,7 +479,7 @@ total_s=$(elapsed)
 sample_load
 load_line=$(printf '%s\n' "${load_samples[@]}" | awk '{ s += $1; if ($1 > m) m = $1 } END { printf "mean %.2f, peak %.2f over %d samples", s / NR, m, NR }')
 if [ "$load" -gt 0 ]; then load_line="stress-ng --cpu $load on $(nproc) cores for the whole run; load average $load_line"
-else load_line="no added load ($(nproc) cores); load average $load_line"; fi
+else load_line="no stress-ng added ($(nproc) cores); load average $load_line"; fi
 # The longest waits of the visit (guest side: journal lines, screens, sound, devices; the host's
 # screendump retries are the "host-screen" ones).
 longest_waits=$(sed -n 's/^wait //p' "$results" 2>/dev/null | awk '{ t = $NF; $NF = ""; printf "%s\t%s\n", t, $0 }' |
