@@ -46,6 +46,18 @@ std::vector<double> Slide(CrumbleSource& crumble, double metres, double load_n) 
   return impulses;
 }
 
+// A firm upright pen (1 N, a 0.3 mm point) on the flat test field, moving at `velocity_mps`.
+ProbeCommand FirmPen(double velocity_mps) {
+  ProbeCommand c;
+  c.tip_down = true;
+  c.x_m = 0.01;
+  c.y_m = 0.0006;
+  c.normal_force_n = 1.0;
+  c.width_mm = 0.3;
+  c.velocity_mps = velocity_mps;
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("grains break once per grain spacing under a firm load, as a Poisson process") {
@@ -136,12 +148,7 @@ TEST_CASE("a crumbling stroke is broadband, the same stroke without the crust is
     Scene scene;
     scene.Init(kFs);
     scene.Prepare(m, OutputParams{}, field.view);
-    ProbeCommand down;
-    down.tip_down = true;
-    down.x_m = 0.01;
-    down.y_m = 0.0006;
-    down.normal_force_n = 1.0;
-    down.width_mm = 0.3;
+    ProbeCommand down = FirmPen(0.0);
     down.landing_speed_mps = 0.005;
     ProbeCommand move = down;
     move.velocity_mps = 0.1;
@@ -171,13 +178,7 @@ TEST_CASE("idle skip with a crumbling crust: zeros after the lift match the full
   test::OwnedField field(4000, 8, 0.153e-3, std::vector<float>(4000 * 8, 0.0f));
   MaterialParams m = test::WoodLikeBoard();
   m.crumble = Crust();
-  ProbeCommand down;
-  down.tip_down = true;
-  down.x_m = 0.01;
-  down.y_m = 0.0006;
-  down.normal_force_n = 1.0;
-  down.width_mm = 0.3;
-  down.velocity_mps = 0.2;
+  const ProbeCommand down = FirmPen(0.2);
   ProbeCommand lift = down;
   lift.tip_down = false;
   const long total = static_cast<long>(5.0 * kFs);
