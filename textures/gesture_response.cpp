@@ -1,5 +1,6 @@
 // gesture_response: how each kiosk texture and the voice surface answer the hand
-// (calibration/gesture_response.h): level and spectral centroid against speed, pressure and style.
+// (calibration/gesture_response.h): level and sharpness against speed, pressure and style, and
+// through one accelerating stroke per style and pressure.
 //
 //   gesture_response --textures DIR [--docs DIR] [--places N]
 //
@@ -30,19 +31,19 @@ constexpr int kPanelW = 440, kPanelH = 250, kLeft = 60, kRight = 14, kTop = 30, 
 
 // One panel: y against speed (log axis), one line per style and pressure (firm solid, light thin).
 void Panel(cv::Mat& image, int x0, int y0, const std::string& title,
-           const std::vector<ResponseCell>& grid, bool centroid) {
+           const std::vector<ResponseCell>& grid, bool sharpness) {
   const cv::Rect area(x0 + kLeft, y0 + kTop, kPanelW - kLeft - kRight, kPanelH - kTop - kBottom);
   double lo = 1e300, hi = -1e300;
   const auto value = [&](const ResponseCell& c) {
-    return centroid ? std::log10(std::max(c.response.centroid_hz, 10.0)) : c.response.sound_db;
+    return sharpness ? c.response.sharpness_acum : c.response.sound_db;
   };
   for (const auto& c : grid) {
     lo = std::min(lo, value(c));
     hi = std::max(hi, value(c));
   }
-  if (centroid) {
-    lo = std::floor(lo * 5.0) / 5.0;
-    hi = std::ceil(hi * 5.0) / 5.0;
+  if (sharpness) {
+    lo = std::floor(lo * 4.0) / 4.0;
+    hi = std::ceil(hi * 4.0) / 4.0;
   } else {
     lo = std::floor(lo / 10.0) * 10.0;
     hi = std::ceil(hi / 10.0) * 10.0;
@@ -70,8 +71,8 @@ void Panel(cv::Mat& image, int x0, int y0, const std::string& title,
   for (int t = 0; t <= ticks; ++t) {
     const double v = lo + (hi - lo) * t / ticks;
     char label[32];
-    if (centroid) {
-      std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, v));
+    if (sharpness) {
+      std::snprintf(label, sizeof label, "%.2f", v);
     } else {
       std::snprintf(label, sizeof label, "%.0f", v);
     }
@@ -111,7 +112,7 @@ void WritePlot(const std::string& path, const std::vector<std::string>& names,
   for (std::size_t i = 0; i < names.size(); ++i) {
     const int y0 = legend + kPanelH * static_cast<int>(i);
     Panel(image, 0, y0, names[i] + ": sound level, dB", grids[i], false);
-    Panel(image, kPanelW, y0, names[i] + ": spectral centroid, Hz", grids[i], true);
+    Panel(image, kPanelW, y0, names[i] + ": sharpness, acum", grids[i], true);
   }
   if (!cv::imwrite(path, image)) throw std::runtime_error("cannot write " + path);
 }
@@ -120,20 +121,22 @@ void WritePlot(const std::string& path, const std::vector<std::string>& names,
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Level and spectral centroid of each kiosk texture and the voice surface against "
-      "speed, pressure and style.",
+      "Level and sharpness of each kiosk texture and the voice surface against speed, "
+      "pressure and style, and through accelerating strokes.",
       "gesture_response"};
   std::string textures = "textures";
   std::string docs;
-  int places = 3;
+  int places = sas::kiosk::kResponsePlaces;
   app.add_option("--textures", textures, "the kiosk textures' folder (default textures)");
   app.add_option("--docs", docs, "write gesture-response.md and gesture-response.png here");
-  app.add_option("--places", places, "places per stroke (default 3)")->check(CLI::Range(1, 50));
+  app.add_option("--places", places, "places per stroke, the median taken (default 8)")
+      ->check(CLI::Range(1, 50));
   CLI11_PARSE(app, argc, argv);
   try {
     const auto surfaces = sas::kiosk::LoadResponseSurfaces(textures);
     std::vector<std::string> names;
     std::vector<std::vector<ResponseCell>> grids;
+    std::vector<std::vector<sas::kiosk::RampResponse>> ramps;
     std::vector<sas::kiosk::ResponseFailure> failures, exemptions;
     for (const auto& s : surfaces) {
       names.push_back(s.name);
@@ -147,8 +150,14 @@ int main(int argc, char** argv) {
         std::printf("EXEMPT [%s] %s\n", f.key.c_str(), f.text.c_str());
         exemptions.push_back(std::move(f));
       }
+      ramps.push_back(sas::kiosk::MeasureRamps(s, places));
+      for (auto& f : sas::kiosk::CheckRamps(s.name, ramps.back())) {
+        std::printf("FAIL [%s] %s\n", f.key.c_str(), f.text.c_str());
+        failures.push_back(std::move(f));
+      }
     }
-    const int relations = sas::kiosk::ResponseRelationCount() * static_cast<int>(surfaces.size());
+    const int relations = (sas::kiosk::ResponseRelationCount() + sas::kiosk::RampRelationCount()) *
+                          static_cast<int>(surfaces.size());
     const int holding =
         relations - static_cast<int>(failures.size()) - static_cast<int>(exemptions.size());
     std::printf("%d of %d relations hold, %zu exempt (sliding noise), %zu fail\n", holding,
@@ -166,15 +175,20 @@ int main(int argc, char** argv) {
           "tilted 40°, a 4 mm probe; roll: a ball following the relief), through the kiosk's "
           "synth at gain 0 dB, "
        << places
-       << " places each (calibration/gesture_response.h). Sound and vibration are RMS levels of "
-          "the "
-          "moving stroke in dB re full scale; the centroid is channel 1's power-weighted mean "
-          "frequency.\n\n![level and centroid against speed](gesture-response.png)\n\n";
+       << " seeded places each, every figure the median over the places (calibration/"
+          "gesture_response.h). Sound and vibration are RMS levels of the moving stroke in dB re "
+          "full scale; sharpness is DIN 45692's (acum, Zwicker loudness of ISO 532-1) with every "
+          "stroke heard at "
+       << sas::kiosk::kListeningDbSpl
+       << " dB SPL, the level the kiosk plays a typical stroke at; the centroid is channel 1's "
+          "power-weighted mean frequency.\n\n![level and sharpness against speed]"
+          "(gesture-response.png)\n\n";
     md << "## Relations\n\nWanted on every surface: speed 30 → 300 mm/s raises the sound by ≥ 6 "
           "dB, "
-          "the centroid by ≥ 1.3× and the vibration; pressure 0.2 → 0.8 raises the sound by ≥ 3 "
+          "the sharpness by ≥ 1.15× and the vibration; pressure 0.2 → 0.8 raises the sound by ≥ 3 "
           "dB; any two styles' level-normalised third-octave spectra (100 Hz–10 kHz) differ by ≥ 3 "
-          "dB on average. **"
+          "dB on average; through a stroke speeding up from 20 to 400 mm/s, level and sharpness "
+          "follow the speed (Spearman's ρ ≥ 0.6 over its 12 windows). **"
        << holding << " of " << relations << " hold, " << exemptions.size() << " are exempt and "
        << failures.size()
        << " fail.**\n\n"
@@ -202,30 +216,56 @@ int main(int argc, char** argv) {
         if (c.stroke.style != sas::synth::ProbeStyle::kScrape || c.stroke.speed_mm_s != 100.0) {
           continue;
         }
-        std::snprintf(line, sizeof line, "| %s | %.1f | %.3f | %.1f | %.0f |\n",
-                      names[i].c_str(), c.stroke.pressure, c.response.flatness,
-                      c.response.crest_db, c.response.onsets_per_s);
+        std::snprintf(line, sizeof line, "| %s | %.1f | %.3f | %.1f | %.0f |\n", names[i].c_str(),
+                      c.stroke.pressure, c.response.flatness, c.response.crest_db,
+                      c.response.onsets_per_s);
         md << line;
+      }
+    }
+    md << "\n## Speeding up\n\nOne stroke per style and pressure whose speed rises steadily "
+          "from "
+       << sas::kiosk::kRampFromMmS << " to " << sas::kiosk::kRampToMmS << " mm/s in "
+       << sas::kiosk::kRampS
+       << " s across the middle of the picture, the pen at rest on the surface before it; level "
+          "(dB) and sharpness (acum) of each of its "
+       << sas::kiosk::kRampWindows
+       << " equal windows, the median over the places, and Spearman's ρ of each against the "
+          "window's speed.\n\n| surface | style | pressure | ρ level | ρ sharpness | level, slow "
+          "→ fast | sharpness, slow → fast |\n|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      for (const auto& r : ramps[i]) {
+        std::string levels, sharps;
+        for (int w = 0; w < sas::kiosk::kRampWindows; ++w) {
+          char one[24];
+          std::snprintf(one, sizeof one, "%.0f", r.sound_db[static_cast<std::size_t>(w)]);
+          levels += (w ? " " : "") + std::string(one);
+          std::snprintf(one, sizeof one, "%.2f", r.sharpness_acum[static_cast<std::size_t>(w)]);
+          sharps += (w ? " " : "") + std::string(one);
+        }
+        std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.2f | %.2f | ", names[i].c_str(),
+                      sas::synth::ProbeStyleName(r.style).data(), r.pressure, r.sound_rho,
+                      r.sharpness_rho);
+        md << line << levels << " | " << sharps << " |\n";
       }
     }
     md << "\n## The grid\n\n";
     for (std::size_t i = 0; i < names.size(); ++i) {
       md << "### " << names[i]
          << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB "
-            "| centroid, Hz | relief alone, dB | relief alone's centroid, Hz | flatness "
-            "| crest, dB | onsets/s |\n"
-            "|---|---|---|---|---|---|---|---|---|---|---|\n";
+            "| sharpness, acum | centroid, Hz | relief alone, dB | relief alone's centroid, Hz "
+            "| flatness | crest, dB | onsets/s |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
         const bool relief_heard = c.response.relief_db >= sas::kiosk::kPrintFloorDb;
-        std::snprintf(line, sizeof line,
-                      "| %s | %.0f | %.1f | %.1f | %.1f | %.0f | %s | %s | %.3f | %.1f | %.0f |\n",
-                      sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
-                      c.stroke.pressure, c.response.sound_db, c.response.haptic_db,
-                      c.response.centroid_hz, sas::kiosk::LevelText(c.response.relief_db).c_str(),
-                      relief_heard
-                          ? std::to_string(std::lround(c.response.relief_centroid_hz)).c_str()
-                          : "-",
-                      c.response.flatness, c.response.crest_db, c.response.onsets_per_s);
+        std::snprintf(
+            line, sizeof line,
+            "| %s | %.0f | %.1f | %.1f | %.1f | %.2f | %.0f | %s | %s | %.3f | %.1f | "
+            "%.0f |\n",
+            sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
+            c.stroke.pressure, c.response.sound_db, c.response.haptic_db, c.response.sharpness_acum,
+            c.response.centroid_hz, sas::kiosk::LevelText(c.response.relief_db).c_str(),
+            relief_heard ? std::to_string(std::lround(c.response.relief_centroid_hz)).c_str() : "-",
+            c.response.flatness, c.response.crest_db, c.response.onsets_per_s);
         md << line;
       }
       md << "\n";

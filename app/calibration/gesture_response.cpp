@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 
 #include "calibration/character.h"
+#include "calibration/sharpness.h"
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/pen_mapping.h"
@@ -77,6 +79,48 @@ Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double
     span.haptic[static_cast<std::size_t>(i)] = buffer[2 * static_cast<std::size_t>(i) + 1];
   }
   return span;
+}
+
+// Renders one stroke from (x0, y0) along (dx, dy) whose speed rises from stroke.speed_mm_s by
+// accel_mm_s2 over kRampS, the pen set at every millisecond on its exact path; returns channel 1
+// of the motion.
+std::vector<float> PlayRamp(const ResponseSurface& surface, const HandStroke& stroke, double x0_mm,
+                            double y0_mm, double dx, double dy, double accel_mm_s2, double fs_hz) {
+  const GestureMapping mapping;
+  synth::Scene scene;
+  scene.Init(fs_hz);
+  scene.Prepare(surface.material, synth::OutputParams{}, surface.field->View());
+  synth::ProbeCommand pen;
+  pen.tip_down = true;
+  pen.x_m = x0_mm * 1e-3;
+  pen.y_m = y0_mm * 1e-3;
+  ApplyPenPressure(stroke.pressure, surface::ReliefM(*surface.field), mapping, pen);
+  ApplyPenTilt(stroke.style == synth::ProbeStyle::kRub ? kTiltRubDeg : 0.0, ProbeShape{},
+               stroke.style, mapping, pen);
+  pen.direction_x = dx;
+  pen.direction_y = dy;
+  pen.landing_speed_mps = kLandingMps;
+  pen.velocity_mps = 0.0;
+  const auto rest = static_cast<int>(std::lround(kRestS * fs_hz));
+  const auto motion = static_cast<int>(std::lround(kRampS * fs_hz));
+  const int block = static_cast<int>(std::lround(fs_hz / 1000.0));
+  std::vector<float> buffer(2 * static_cast<std::size_t>(std::max(rest, block)));
+  scene.Process(&pen, 1, buffer.data(), rest);
+  std::vector<float> sound;
+  sound.reserve(static_cast<std::size_t>(motion));
+  for (int at = 0; at < motion; at += block) {
+    const int n = std::min(block, motion - at);
+    const double t = at / fs_hz;
+    const double s_mm = stroke.speed_mm_s * t + 0.5 * accel_mm_s2 * t * t;
+    synth::ProbeCommand move = pen;
+    move.x_m = (x0_mm + s_mm * dx) * 1e-3;
+    move.y_m = (y0_mm + s_mm * dy) * 1e-3;
+    // The speed at the block's middle, so the scene's step along the path matches the hand's.
+    move.velocity_mps = (stroke.speed_mm_s + accel_mm_s2 * (t + 0.5 * n / fs_hz)) * 1e-3;
+    scene.Process(&move, 1, buffer.data(), n);
+    for (int i = 0; i < n; ++i) sound.push_back(buffer[2 * static_cast<std::size_t>(i)]);
+  }
+  return sound;
 }
 
 double MeanSquare(const std::vector<float>& x) {
@@ -156,6 +200,49 @@ std::vector<ResponseSurface> LoadResponseSurfaces(const std::string& textures_di
   return out;
 }
 
+StrokePlace ResponsePlace(int index, double width_mm, double height_mm) {
+  // splitmix64 of (seed, index): the same places on every machine and run, independent of the
+  // standard library's distributions. The seed is arbitrary; changing it moves every place.
+  std::uint64_t z =
+      0x5A5C0FFEE2026ULL + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(index + 1);
+  const auto next = [&z] {
+    z += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t x = z;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    x ^= x >> 31;
+    return static_cast<double>(x >> 11) * 0x1.0p-53;  // uniform in [0, 1)
+  };
+  StrokePlace place;
+  // The middle 60 % of the picture, any direction: a 20 mm path stays well inside it.
+  place.cx_mm = width_mm * (0.2 + 0.6 * next());
+  place.cy_mm = height_mm * (0.2 + 0.6 * next());
+  const double angle = std::numbers::pi * next();
+  place.dx = std::cos(angle);
+  place.dy = std::sin(angle);
+  return place;
+}
+
+namespace {
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Sharpness heard at kListeningDbSpl (gesture_response.h); 0 for a silent span.
+double HeardSharpness(std::span<const float> x, double fs_hz) {
+  double sum = 0.0;
+  for (const float v : x) sum += static_cast<double>(v) * v;
+  if (x.empty() || sum <= 1e-24 * static_cast<double>(x.size())) return 0.0;
+  const double rms_db = PowerDb(sum / static_cast<double>(x.size()));
+  return Sharpness(x, fs_hz, kListeningDbSpl - rms_db);
+}
+
+}  // namespace
+
 StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& stroke, int places,
                              double fs_hz) {
   const double width_mm = surface.field->width() * surface.field->pitch_m() * 1e3;
@@ -165,36 +252,134 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
   relief.material.friction.enabled = false;
   relief.material.roughness.enabled = false;
   relief.material.crumble.enabled = false;
-  StrokeResponse mean;
-  mean.sound_db = mean.haptic_db = mean.relief_db = 0.0;
   places = std::max(places, 1);
+  std::vector<StrokeResponse> each;
   for (int p = 0; p < places; ++p) {
-    // Places spread over the middle of the surface, directions turning by 70° from one to the
-    // next (never along the voice image's rows only, never the same crack twice).
-    const double angle = (15.0 + 70.0 * p) * std::numbers::pi / 180.0;
-    const double dx = std::cos(angle), dy = std::sin(angle);
-    const double cx = width_mm * (0.3 + 0.4 * (p + 0.5) / places);
-    const double cy = height_mm * (0.35 + 0.3 * ((p * 7) % places + 0.5) / places);
-    const Span span = PlayStroke(surface, stroke, cx - 0.5 * kPathMm * dx, cy - 0.5 * kPathMm * dy,
-                                 dx, dy, fs_hz);
+    const StrokePlace at = ResponsePlace(p, width_mm, height_mm);
+    const double x0 = at.cx_mm - 0.5 * kPathMm * at.dx, y0 = at.cy_mm - 0.5 * kPathMm * at.dy;
+    const Span span = PlayStroke(surface, stroke, x0, y0, at.dx, at.dy, fs_hz);
     StrokeResponse one;
     Spectrum(span.sound, fs_hz, &one);
-    mean.sound_db += PowerDb(MeanSquare(span.sound)) / places;
-    mean.haptic_db += PowerDb(MeanSquare(span.haptic)) / places;
-    const Span relief_span =
-        PlayStroke(relief, stroke, cx - 0.5 * kPathMm * dx, cy - 0.5 * kPathMm * dy, dx, dy, fs_hz);
-    mean.relief_db += PowerDb(MeanSquare(relief_span.sound)) / places;
+    one.sound_db = PowerDb(MeanSquare(span.sound));
+    one.haptic_db = PowerDb(MeanSquare(span.haptic));
+    one.sharpness_acum = HeardSharpness(span.sound, fs_hz);
+    one.flatness = SpectralFlatness(span.sound, fs_hz);
+    one.crest_db = CrestFactorDb(span.sound);
+    one.onsets_per_s = OnsetRatePerS(span.sound, fs_hz);
+    const Span relief_span = PlayStroke(relief, stroke, x0, y0, at.dx, at.dy, fs_hz);
     StrokeResponse relief_one;
     Spectrum(relief_span.sound, fs_hz, &relief_one);
-    mean.relief_centroid_hz += relief_one.centroid_hz / places;
-    mean.centroid_hz += one.centroid_hz / places;
-    mean.flatness += SpectralFlatness(span.sound, fs_hz) / places;
-    mean.crest_db += CrestFactorDb(span.sound) / places;
-    mean.onsets_per_s += OnsetRatePerS(span.sound, fs_hz) / places;
-    for (std::size_t b = 0; b < mean.band_db.size(); ++b)
-      mean.band_db[b] += one.band_db[b] / places;
+    one.relief_db = PowerDb(MeanSquare(relief_span.sound));
+    one.relief_centroid_hz = relief_one.centroid_hz;
+    each.push_back(one);
   }
-  return mean;
+  const auto median = [&](auto field) {
+    std::vector<double> v;
+    for (const StrokeResponse& r : each) v.push_back(field(r));
+    return Median(std::move(v));
+  };
+  StrokeResponse m;
+  m.sound_db = median([](const StrokeResponse& r) { return r.sound_db; });
+  m.haptic_db = median([](const StrokeResponse& r) { return r.haptic_db; });
+  m.centroid_hz = median([](const StrokeResponse& r) { return r.centroid_hz; });
+  m.relief_db = median([](const StrokeResponse& r) { return r.relief_db; });
+  m.relief_centroid_hz = median([](const StrokeResponse& r) { return r.relief_centroid_hz; });
+  m.flatness = median([](const StrokeResponse& r) { return r.flatness; });
+  m.crest_db = median([](const StrokeResponse& r) { return r.crest_db; });
+  m.onsets_per_s = median([](const StrokeResponse& r) { return r.onsets_per_s; });
+  m.sharpness_acum = median([](const StrokeResponse& r) { return r.sharpness_acum; });
+  for (std::size_t b = 0; b < m.band_db.size(); ++b) {
+    m.band_db[b] = median([b](const StrokeResponse& r) { return r.band_db[b]; });
+  }
+  return m;
+}
+
+double SpearmanRho(std::span<const double> a, std::span<const double> b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  if (n < 2) return 0.0;
+  const auto ranks = [n](std::span<const double> x) {
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t i, std::size_t j) { return x[i] < x[j]; });
+    std::vector<double> r(n);
+    for (std::size_t i = 0; i < n;) {
+      std::size_t j = i;
+      while (j + 1 < n && x[order[j + 1]] == x[order[i]]) ++j;
+      const double mean_rank = 0.5 * static_cast<double>(i + j);  // ties share their mean rank
+      for (std::size_t k = i; k <= j; ++k) r[order[k]] = mean_rank;
+      i = j + 1;
+    }
+    return r;
+  };
+  const std::vector<double> ra = ranks(a), rb = ranks(b);
+  // Pearson's correlation of the ranks (exact with ties).
+  double ma = 0.0, mb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) ma += ra[i] / static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) mb += rb[i] / static_cast<double>(n);
+  double sab = 0.0, saa = 0.0, sbb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sab += (ra[i] - ma) * (rb[i] - mb);
+    saa += (ra[i] - ma) * (ra[i] - ma);
+    sbb += (rb[i] - mb) * (rb[i] - mb);
+  }
+  return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+RampResponse MeasureRamp(const ResponseSurface& surface, synth::ProbeStyle style, double pressure,
+                         int places, double fs_hz) {
+  const double width_mm = surface.field->width() * surface.field->pitch_m() * 1e3;
+  const double height_mm = surface.field->height() * surface.field->pitch_m() * 1e3;
+  const double accel = (kRampToMmS - kRampFromMmS) / kRampS;  // mm/s²
+  const double path_mm = 0.5 * (kRampFromMmS + kRampToMmS) * kRampS;
+  const auto motion = static_cast<int>(std::lround(kRampS * fs_hz));
+  const int window = motion / kRampWindows;
+  RampResponse out;
+  out.style = style;
+  out.pressure = pressure;
+  places = std::max(places, 1);
+  std::array<std::vector<double>, kRampWindows> level, sharp;
+  for (int p = 0; p < places; ++p) {
+    // Across the middle of the picture, at most 20° off the horizontal (the path is 168 mm, the
+    // picture 166 mm high), from a seeded place.
+    const StrokePlace at = ResponsePlace(1000 + p, width_mm, height_mm);
+    const double angle = (at.dy * 2.0 - 1.0) * 20.0 * std::numbers::pi / 180.0;
+    const double sign = at.dx >= 0.0 ? 1.0 : -1.0;
+    const double dx = sign * std::cos(angle), dy = std::sin(angle);
+    const double cx = width_mm * (0.45 + 0.1 * (at.cx_mm / width_mm));
+    const double cy = height_mm * (0.4 + 0.2 * (at.cy_mm / height_mm));
+    const double x0 = cx - 0.5 * path_mm * dx, y0 = cy - 0.5 * path_mm * dy;
+    const HandStroke stroke{style, kRampFromMmS, pressure};
+    const std::vector<float> sound = PlayRamp(surface, stroke, x0, y0, dx, dy, accel, fs_hz);
+    for (int w = 0; w < kRampWindows; ++w) {
+      const std::span<const float> part(sound.data() + static_cast<std::size_t>(w) * window,
+                                        static_cast<std::size_t>(window));
+      double sum = 0.0;
+      for (const float v : part) sum += static_cast<double>(v) * v;
+      level[static_cast<std::size_t>(w)].push_back(PowerDb(sum / window));
+      sharp[static_cast<std::size_t>(w)].push_back(HeardSharpness(part, fs_hz));
+    }
+  }
+  for (int w = 0; w < kRampWindows; ++w) {
+    const auto i = static_cast<std::size_t>(w);
+    const double t_mid = (w + 0.5) * window / fs_hz;
+    out.speed_mm_s[i] = kRampFromMmS + accel * t_mid;
+    out.sound_db[i] = Median(level[i]);
+    out.sharpness_acum[i] = Median(sharp[i]);
+  }
+  out.sound_rho = SpearmanRho(out.speed_mm_s, out.sound_db);
+  out.sharpness_rho = SpearmanRho(out.speed_mm_s, out.sharpness_acum);
+  return out;
+}
+
+std::vector<RampResponse> MeasureRamps(const ResponseSurface& surface, int places) {
+  std::vector<RampResponse> out;
+  for (const synth::ProbeStyle style : kResponseStyles) {
+    for (const double pressure : kResponsePressures) {
+      out.push_back(MeasureRamp(surface, style, pressure, places));
+    }
+  }
+  return out;
 }
 
 double SpectralDistanceDb(const StrokeResponse& a, const StrokeResponse& b) {
@@ -226,6 +411,42 @@ std::string LevelText(double db) {
     std::snprintf(text, sizeof text, "%.1f", db);
   }
   return text;
+}
+
+int RampRelationCount() {
+  return 2 * static_cast<int>(kResponseStyles.size() * kResponsePressures.size());
+}
+
+std::vector<ResponseFailure> CheckRamps(const std::string& surface_name,
+                                        const std::vector<RampResponse>& ramps,
+                                        const ResponseLimits& limits) {
+  std::vector<ResponseFailure> out;
+  char text[400];
+  char key[160];
+  for (const RampResponse& r : ramps) {
+    const char* style = synth::ProbeStyleName(r.style).data();
+    const auto check = [&](const char* what, const char* relation, double rho,
+                           const std::array<double, kRampWindows>& series, const char* format) {
+      if (rho >= limits.ramp_rho) return;
+      std::string figures;
+      for (const double v : series) {
+        char one[24];
+        std::snprintf(one, sizeof one, format, v);
+        figures += (figures.empty() ? "" : " ") + std::string(one);
+      }
+      std::snprintf(text, sizeof text,
+                    "%s, %s, p %.1f: speeding up %.0f -> %.0f mm/s, the %s follows the speed "
+                    "with rho %.2f, needs %.2f (%s)",
+                    surface_name.c_str(), style, r.pressure, kRampFromMmS, kRampToMmS, what, rho,
+                    limits.ramp_rho, figures.c_str());
+      std::snprintf(key, sizeof key, "%s/%s/%s/p%.1f", surface_name.c_str(), relation, style,
+                    r.pressure);
+      out.push_back({key, text});
+    };
+    check("level", "ramp-sound", r.sound_rho, r.sound_db, "%.1f");
+    check("sharpness", "ramp-sharpness", r.sharpness_rho, r.sharpness_acum, "%.2f");
+  }
+  return out;
 }
 
 int ResponseRelationCount() {
@@ -283,16 +504,17 @@ ResponseCheck CheckResponseGrid(const std::string& surface_name,
         std::snprintf(condition, sizeof condition, "p%.1f", pressure);
         fail("speed-sound", name(style), condition);
       }
-      if (!(b->centroid_hz >= limits.speed_centroid_ratio * a->centroid_hz)) {
+      if (!(b->sharpness_acum >= limits.speed_sharpness_ratio * a->sharpness_acum)) {
         std::snprintf(text, sizeof text,
-                      "%s, %s, p %.1f: speed %.0f -> %.0f mm/s moves the centroid %.0f -> %.0f "
-                      "Hz (x%.2f), needs x%.2f (the relief alone: %.0f -> %.0f Hz, x%.2f)",
-                      surface_name.c_str(), name(style), pressure, slow, fast, a->centroid_hz,
-                      b->centroid_hz, b->centroid_hz / std::max(a->centroid_hz, 1e-9),
-                      limits.speed_centroid_ratio, a->relief_centroid_hz, b->relief_centroid_hz,
-                      b->relief_centroid_hz / std::max(a->relief_centroid_hz, 1e-9));
+                      "%s, %s, p %.1f: speed %.0f -> %.0f mm/s moves the sharpness %.2f -> %.2f "
+                      "acum (x%.2f), needs x%.2f (centroid %.0f -> %.0f Hz; the relief alone's "
+                      "%.0f -> %.0f Hz)",
+                      surface_name.c_str(), name(style), pressure, slow, fast, a->sharpness_acum,
+                      b->sharpness_acum, b->sharpness_acum / std::max(a->sharpness_acum, 1e-9),
+                      limits.speed_sharpness_ratio, a->centroid_hz, b->centroid_hz,
+                      a->relief_centroid_hz, b->relief_centroid_hz);
         std::snprintf(condition, sizeof condition, "p%.1f", pressure);
-        fail("speed-centroid", name(style), condition);
+        fail("speed-sharpness", name(style), condition);
       }
       if (!(b->haptic_db - a->haptic_db > limits.speed_haptic_db)) {
         std::snprintf(text, sizeof text,

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,8 @@ struct StrokeResponse {
   // Channel 1's band levels (dB) relative to its total level: the spectrum's shape alone.
   std::array<double, kThirdOctaveBands> band_db{};
   // Channel 1's RMS for the same stroke with the relief alone (friction, the material's
-  // micro-roughness and its crumbling crust off): how much of the sound the felt profile itself makes.
+  // micro-roughness and its crumbling crust off): how much of the sound the felt profile itself
+  // makes.
   double relief_db = -300.0;
   // The relief alone's centroid: whether the felt profile on its own brightens with speed.
   double relief_centroid_hz = 0.0;
@@ -64,15 +66,37 @@ struct StrokeResponse {
   double flatness = 0.0;
   double crest_db = 0.0;
   double onsets_per_s = 0.0;
+  // Channel 1's DIN 45692 sharpness (acum, calibration/sharpness.h) heard at kListeningDbSpl:
+  // brightness as listeners judge it, where the power centroid stays on a few strong low modes.
+  double sharpness_acum = 0.0;
 };
+
+// The level every stroke is scaled to before its sharpness is taken: a typical stroke as the
+// kiosk plays it (each stroke is brought near its textures' median, -36 LUFS at the texture's
+// gains, and the kiosk adds +12 dB: about 70 dB SPL, calibration/sharpness.h). Taking every
+// stroke at one level keeps the hearing threshold from deciding which quiet high bands count,
+// so sharpness measures the spectrum's shape as heard; its own level dependence is weak.
+inline constexpr double kListeningDbSpl = 70.0;
 
 inline constexpr double kRestS = 0.15;
 inline constexpr double kPathMm = 20.0;
 
-// Plays `stroke` `places` times (paths spread over the surface's middle, each in its own
-// direction) and returns the mean of their levels (dB), centroids and band shapes.
+// Places per measured stroke. The sound depends on where the pen goes (a crack, a bubble, a grain
+// line), so every figure is the median over this many places: seeded positions and directions
+// over the surface's middle, none of them a place the level calibration strokes.
+inline constexpr int kResponsePlaces = 8;
+
+// Where place `index` of a surface w × h mm lies: the stroke's centre (mm) and direction (a unit
+// vector). Seeded, so every run measures the same places.
+struct StrokePlace {
+  double cx_mm = 0.0, cy_mm = 0.0, dx = 1.0, dy = 0.0;
+};
+StrokePlace ResponsePlace(int index, double width_mm, double height_mm);
+
+// Plays `stroke` at `places` places and returns the median of each figure over the places
+// (each band of the band shape on its own).
 StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& stroke,
-                             int places = 3, double fs_hz = 48000.0);
+                             int places = kResponsePlaces, double fs_hz = 48000.0);
 
 // Mean absolute difference (dB) of two band shapes.
 double SpectralDistanceDb(const StrokeResponse& a, const StrokeResponse& b);
@@ -89,7 +113,35 @@ struct ResponseCell {
 };
 
 // Every style × speed × pressure of the grid on one surface, in that nesting order.
-std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface, int places = 3);
+std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface,
+                                              int places = kResponsePlaces);
+
+// One stroke whose speed rises steadily from kRampFromMmS to kRampToMmS over kRampS (a hand
+// speeding up across the picture, the landing at rest before it as in every stroke): the sound's
+// level and sharpness in kRampWindows equal windows, each the median over the places, and how
+// well each follows the speed (Spearman's rank correlation of the window's mean speed with its
+// level, and with its sharpness).
+inline constexpr double kRampFromMmS = 20.0;
+inline constexpr double kRampToMmS = 400.0;
+inline constexpr double kRampS = 0.8;  // 168 mm: across the middle of the picture
+inline constexpr int kRampWindows = 12;
+struct RampResponse {
+  synth::ProbeStyle style = synth::ProbeStyle::kScrape;
+  double pressure = 0.5;
+  std::array<double, kRampWindows> speed_mm_s{};
+  std::array<double, kRampWindows> sound_db{};
+  std::array<double, kRampWindows> sharpness_acum{};
+  double sound_rho = 0.0;
+  double sharpness_rho = 0.0;
+};
+RampResponse MeasureRamp(const ResponseSurface& surface, synth::ProbeStyle style, double pressure,
+                         int places = kResponsePlaces, double fs_hz = 48000.0);
+// Every style at both pressures of the grid.
+std::vector<RampResponse> MeasureRamps(const ResponseSurface& surface,
+                                       int places = kResponsePlaces);
+
+// Spearman's rank correlation (ties get their mean rank); 0 where either side is constant.
+double SpearmanRho(std::span<const double> a, std::span<const double> b);
 
 // One failed relation of the grid: `key` names it ("wooden board/speed-centroid/roll/p0.8"),
 // `text` says it with figures ("wooden board, roll, p 0.8: speed 30 -> 300 mm/s moves the centroid
@@ -107,12 +159,13 @@ std::vector<ResponseCell> MeasureResponseGrid(const ResponseSurface& surface, in
 // the noise.
 struct ResponseLimits {
   double speed_sound_db = 6.0;
-  double speed_centroid_ratio = 1.3;
+  double speed_sharpness_ratio = 1.15;
   double speed_haptic_db = 0.0;  // "rises": more than this
   double pressure_sound_db = 3.0;
   double style_distance_db = 3.0;
   double sliding_noise_margin_db = 20.0;
   double sliding_noise_min_rise_db = -1.0;
+  double ramp_rho = 0.6;
 };
 struct ResponseFailure {
   std::string key;
@@ -123,7 +176,8 @@ struct ResponseCheck {
   std::vector<ResponseFailure> exemptions;  // pressure relations the sliding noise explains
 };
 // Every relation of the grid on one surface: speed 30 -> 300 mm/s raises the sound level by
-// speed_sound_db, the centroid by speed_centroid_ratio and the vibration (per style and pressure);
+// speed_sound_db, the sharpness by speed_sharpness_ratio and the vibration (per style and
+// pressure);
 // pressure 0.2 -> 0.8 raises the sound by pressure_sound_db (per style and speed), or is exempt
 // (above); every two styles' band shapes differ by style_distance_db (per speed and pressure).
 // Returns the ones that fail and the exempt ones.
@@ -132,6 +186,13 @@ ResponseCheck CheckResponseGrid(const std::string& surface_name,
                                 const ResponseLimits& limits = {});
 // How many relations CheckResponseGrid checks on one surface.
 int ResponseRelationCount();
+// The accelerating strokes' relations: level and sharpness each follow the speed with Spearman's
+// rho >= ramp_rho. Keys "<surface>/ramp-sound/<style>/p0.2", ".../ramp-sharpness/...".
+std::vector<ResponseFailure> CheckRamps(const std::string& surface_name,
+                                        const std::vector<RampResponse>& ramps,
+                                        const ResponseLimits& limits = {});
+// How many relations CheckRamps checks on one surface.
+int RampRelationCount();
 
 // A level for the figures: "-42.5", or "< -150" where the render is silent and what is left is
 // the float residue of a decaying ring (-220 dB is not a level anyone hears). A print floor, not
