@@ -73,8 +73,14 @@ constexpr double kMaxSpeed = 100.0;
 // surface it pressed down springs back with it — and once the spring is slack it pulls the tip
 // off. Stepping the load away instead releases the surface's whole deflection at once: a pop
 // louder than the stroke on a soft material. The unload is bounded by kMaxUnloadS.
+// The fingers do not let a light load go faster than a heavy one: the load leaves over at least
+// kMinUnloadS (the hand rises more slowly while the tip bears load, at kLiftSpeedMps once it
+// does not). At 1 mm/N a light press (0.2 N) went in 2 ms, faster than a bubble's 5.5 ms
+// period, and released its whole deflection as a ring 3-4 dB over the stroke; over 20 ms, four
+// periods of the lowest kiosk mode, the surface follows the load back up instead.
 constexpr double kLiftSpeedMps = 0.1;
 constexpr double kFingerPulpNPerM = 1e3;
+constexpr double kMinUnloadS = 0.02;
 constexpr double kMaxUnloadS = 0.05;
 
 }  // namespace
@@ -115,8 +121,10 @@ struct Scene::Impl {
   // fingers' spring as the hand rises, until the tip is off the surface; then the probe is parked
   // and `unload_after` (the pen-up command, or the latest one of the pen hovering since) applies.
   bool unloading = false;
-  int unload_samples = 0;   // samples since the lift
-  double unload_tip_m = 0.0;  // the probe's height at the lift
+  int unload_samples = 0;                  // samples since the lift
+  double unload_tip_m = 0.0;               // the probe's height at the lift
+  double unload_rise_mps = kLiftSpeedMps;  // the hand's rise while the tip still bears load
+  double unload_hand_m = 0.0;              // how far the hand has risen since the lift
   ProbeCommand unload_after{};
   bool finishing_unload = false;
   bool burst_touched = false;
@@ -203,8 +211,7 @@ struct Scene::Impl {
   bool Silent() const {
     if (probe.active) return false;
     constexpr double kThreshold = 0.5 * kIdleSilence;
-    return (modes.PickupAmplitudeBound() + crumble.AmplitudeBound()) * output_gain *
-                   stroke_bound <
+    return (modes.PickupAmplitudeBound() + crumble.AmplitudeBound()) * output_gain * stroke_bound <
                kThreshold &&
            output.FilterActivity() < kThreshold;
   }
@@ -360,8 +367,8 @@ struct Scene::Impl {
   double Push() const {
     if (!gesture.tip_down) return 0.0;
     if (!unloading) return gesture.normal_force_n;
-    const double hand_rise = kLiftSpeedMps * static_cast<double>(unload_samples + 1) / fs;
-    return gesture.normal_force_n - kFingerPulpNPerM * (hand_rise - (probe.height_m - unload_tip_m));
+    return gesture.normal_force_n -
+           kFingerPulpNPerM * (unload_hand_m - (probe.height_m - unload_tip_m));
   }
 
   // The unload is over: the tip has left, the pen-up command applies.
@@ -405,6 +412,9 @@ struct Scene::Impl {
       unloading = true;
       unload_samples = 0;
       unload_tip_m = probe.height_m;
+      unload_hand_m = 0.0;
+      unload_rise_mps =
+          std::min(kLiftSpeedMps, gesture.normal_force_n / (kFingerPulpNPerM * kMinUnloadS));
       unload_after = c;
       if (c.burst_impulse_n_s > 0.0) Kick(c.burst_impulse_n_s);
       return;
@@ -499,9 +509,10 @@ struct Scene::Impl {
     const double pickup = modes.PickupVelocity() + crumble.Ring();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
     // The stylus carries the contact force to the hand whether or not the surface rings in the
-    // transducer's band (glass: modes from 683 Hz, most above 800 Hz): as the velocity that force gives the
-    // probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive (Verrillo,
-    // JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its fluctuation.
+    // transducer's band (glass: modes from 683 Hz, most above 800 Hz): as the velocity that force
+    // gives the probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive
+    // (Verrillo, JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its
+    // fluctuation.
     const double felt = probe.active ? (probe.normal_n + probe.friction_n) * felt_per_newton : 0.0;
     if (pending == kOutputChunk) FlushOutput();
     if (pending == 0) pending_out = frame;
@@ -510,6 +521,8 @@ struct Scene::Impl {
     ++pending;
     if (unloading) {
       ++unload_samples;
+      // The fingers let the load go gently; once it is gone the arm takes the pen away.
+      unload_hand_m += (Push() > 0.0 ? unload_rise_mps : kLiftSpeedMps) / fs;
       // Off: the spring pulls and the tip has left the surface (or the bound is reached).
       const bool off = Push() < 0.0 && probe.compression_m < 0.0;
       if (off || !probe.active || unload_samples >= static_cast<int>(kMaxUnloadS * fs)) {

@@ -258,7 +258,7 @@ TEST_CASE(
 TEST_CASE(
     "gesture response: on the four kiosk textures and the voice surface, no relation "
     "beyond the known open ones fails (medians of 8 places: speed 30 -> 300 mm/s gives +6 dB, "
-    "x1.15 sharpness and more vibration, pressure 0.2 -> 0.8 gives +3 dB, styles 3 dB apart; "
+    "x1.15 sharpness and more vibration, pressure 0.2 -> 0.8 gives +3 dB, styles 3 dB apart, and "
     "level and sharpness follow a stroke speeding up from 20 to 400 mm/s)",
     "[kiosk][gesture]") {
   const auto surfaces = sas::kiosk::LoadResponseSurfaces(
