@@ -87,12 +87,13 @@ class Visit {
     Run(0.02 + 0.1, pen);  // lifted
     Run(kTailS - 0.1);
     const std::size_t last = frames_rendered();
-    {  // The stroke's level over its pen-down span (one buffer's delay), as texture_levels.h does.
+    {  // The whole stroke's level, from its landing to just after its lift (one buffer's delay),
+       // as the visitor population is measured (texture_levels.h, whole_strokes).
       const double fs = driver_.sample_rate_hz();
-      const double delay_s = driver_.block_frames() / fs + stroke.hover_s + kiosk::kSettleS;
+      const double delay_s = driver_.block_frames() / fs + stroke.hover_s;
       const auto from = first + static_cast<std::size_t>(std::llround(delay_s * fs));
-      const auto to = first + static_cast<std::size_t>(
-                                  std::llround((delay_s - kiosk::kSettleS + kStrokeS) * fs));
+      const auto to = first + static_cast<std::size_t>(std::llround(
+                                  (delay_s + kStrokeS + kiosk::kGapAfterLiftS) * fs));
       const std::span<const float> all(driver_.output());
       levels_[name] = {surface::KWeightedLoudnessDb(all, fs, from, to, 2),
                        surface::RmsDb(all.subspan(1), from, to, 2)};

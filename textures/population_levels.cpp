@@ -7,8 +7,9 @@
 //                     [--readme README.md]
 //
 // Prints, and with --docs writes DIR/population-levels.md: per texture the median stroke loudness
-// (LUFS) and transducer level (dB RMS), their 5th–95th percentile spread, the loudest stroke over
-// the median, and the medians per style; and whether the level-matching targets hold.
+// (LUFS) and transducer level (dB RMS) of whole strokes (landings included), their 5th–95th
+// percentile spread, the loudest stroke and the loudest 400 ms over the median, and the medians per
+// style; and whether the level-matching targets hold.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -48,27 +49,35 @@ std::string LevelsMarkdown(const std::vector<sas::kiosk::PopulationLevels>& rows
      << " strokes with the kiosk's idle reset between them (the bubbles un-popped, as between "
         "visitors), at the textures' [gains] and the default kiosk gains (+"
      << defaults.sound_gain_db << " dB sound, +" << defaults.haptic_gain_db
-     << " dB transducer), measured from 0.1 s after touch-down: loudness in LUFS (BS.1770, "
-        "ungated), transducer level in dB RMS (40–800 Hz).\n\n"
-        "| texture | median LUFS (vs mean of medians) | 5–95 % | loudest − median | median "
-        "transducer dB (vs mean) | 5–95 % | scrape / rub / roll median LUFS | scrape / rub / "
-        "roll transducer dB |\n|---|---|---|---|---|---|---|---|\n";
+     << " dB transducer), each stroke measured whole, from its touch-down (the landing "
+        "included) to "
+     << sas::kiosk::kGapAfterLiftS
+     << " s after its lift: loudness in LUFS (BS.1770, ungated), transducer level in dB RMS "
+        "(40–800 Hz); the loudest moment is the loudest 400 ms of any stroke (EBU R 128 "
+        "momentary loudness, windows every 100 ms).\n\n"
+        "| texture | median LUFS (vs mean of medians) | 5–95 % | loudest stroke − median | "
+        "loudest moment − median | median transducer dB (vs mean) | 5–95 % | scrape / rub / "
+        "roll median LUFS | scrape / rub / roll transducer dB |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const auto s = [&](const char* k) {
       return r.per_style.count(k) ? r.per_style.at(k) : std::pair{0.0, 0.0};
     };
     std::snprintf(line, sizeof line,
-                  "| %s | %.1f (%+.1f) | %.1f … %.1f | %.1f | %.1f (%+.1f) | %.1f … %.1f | "
+                  "| %s | %.1f (%+.1f) | %.1f … %.1f | %.1f | %.1f | %.1f (%+.1f) | %.1f … %.1f | "
                   "%.1f / %.1f / %.1f | %.1f / %.1f / %.1f |\n",
                   r.name.c_str(), r.sound_median, r.sound_median - mean_sound, r.sound_p5,
-                  r.sound_p95, r.sound_max - r.sound_median, r.haptic_median,
-                  r.haptic_median - mean_haptic, r.haptic_p5, r.haptic_p95, s("scrape").first,
-                  s("rub").first, s("roll").first, s("scrape").second, s("rub").second,
-                  s("roll").second);
+                  r.sound_p95, r.sound_max - r.sound_median, r.momentary_max - r.sound_median,
+                  r.haptic_median, r.haptic_median - mean_haptic, r.haptic_p5, r.haptic_p95,
+                  s("scrape").first, s("rub").first, s("roll").first, s("scrape").second,
+                  s("rub").second, s("roll").second);
     md << line;
   }
-  md << "\nThe loudest stroke on each texture:\n\n";
-  for (const auto& r : rows) md << "- " << r.name << ": " << r.loudest_stroke << "\n";
+  md << "\nThe loudest stroke on each texture, and the stroke with its loudest moment:\n\n";
+  for (const auto& r : rows) {
+    md << "- " << r.name << ": " << r.loudest_stroke << "; loudest moment "
+       << r.loudest_moment_stroke << "\n";
+  }
   md << "\nTargets: " << sas::kiosk::DescribeTargets(targets, defaults.haptic_ceiling_db) << ".\n";
   return md.str();
 }
@@ -83,7 +92,7 @@ std::string ReadmeBlock(const std::vector<sas::kiosk::PopulationLevels>& rows, i
   md << "Measured by `population_levels` on " << count
      << " generated visitor strokes per texture (scrape, rub and roll, slow to fast, light to "
         "firm) at the default gains; details in `docs/population-levels.md`.\n\n"
-        "| texture | median loudness | loudest stroke | median vibration |\n"
+        "| texture | median loudness | loudest moment | median vibration |\n"
         "|---|---|---|---|\n";
   char line[256];
   for (const auto& r : rows) {
@@ -91,15 +100,15 @@ std::string ReadmeBlock(const std::vector<sas::kiosk::PopulationLevels>& rows, i
                   "| %s | %.1f LUFS (%+.1f LU from the mean) | %.1f LU over the median | %.1f dB "
                   "(%+.1f dB) |\n",
                   r.name.c_str(), r.sound_median, r.sound_median - targets.mean_sound,
-                  r.sound_max - r.sound_median, r.haptic_median,
+                  r.momentary_max - r.sound_median, r.haptic_median,
                   r.haptic_median - targets.mean_haptic);
     md << line;
   }
   md << "\nThe aims: medians within ±" << sas::kiosk::kSoundSpreadLu << " LU and ±"
      << sas::kiosk::kHapticSpreadDb << " dB of the mean, no stroke over "
      << sas::kiosk::kLoudestOverMedianLu
-     << " LU above its texture's median: " << (targets.all() ? "all met" : "**not all met**")
-     << ".\n";
+     << " LU above its texture's median in any 400 ms, landings included: "
+     << (targets.all() ? "all met" : "**not all met**") << ".\n";
   return md.str();
 }
 

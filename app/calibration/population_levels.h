@@ -7,7 +7,10 @@
 // Targets, per texture, at the kiosk's default gains:
 //   sound    the median stroke loudness (LUFS) within kSoundSpreadLu of the four textures' mean
 //   haptic   the median transducer level (dB RMS) within kHapticSpreadDb of their mean
-//   loudest  no stroke louder than its texture's median by more than kLoudestOverMedianLu
+//   loudest  no stroke's loudest 400 ms (momentary loudness) over its texture's median by more
+//            than kLoudestOverMedianLu
+// Every stroke is measured whole, from its touch-down (the landing) to just after its lift: a
+// pen's landing is part of its stroke, and the loudest moment of a visit can be one.
 //   felt     every style's (scrape, rub, roll) median transducer level within kFeltBelowCeilingDb
 //            of the transducer's ceiling
 
@@ -35,6 +38,9 @@ struct PopulationLevels {
   // The loudest stroke, told as a visitor made it ("roll 312 mm/s, pressure 0.84, 0.41 s"), so
   // whoever tunes the levels sees which strokes stand out.
   std::string loudest_stroke;
+  // The loudest 400 ms of any stroke (LUFS, momentary) and that stroke.
+  double momentary_max = 0.0;
+  std::string loudest_moment_stroke;
   std::map<std::string, std::pair<double, double>> per_style;
 };
 

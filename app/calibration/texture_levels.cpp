@@ -28,7 +28,7 @@ constexpr double kCalibrationToleranceDb = 0.05;
 // speed, over 1.2 s it was 10 dB below the others), so the sustained sound is what is matched. The
 // landing gets the stroke's correction too (stroke_gain.h). Between strokes the pen is up; the
 // ring of one stroke still under the next is part of the (deterministic) sequence.
-constexpr double kGapS = 0.15;
+constexpr double kGapS = kGapAfterLiftS;
 // After the idle reset between visits: its switch to the default texture and the fade (well within
 // this) settle before the next visitor's stroke.
 constexpr double kVisitResetS = 0.5;
@@ -239,18 +239,35 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
     visit.Advance(stroke.pen.hover_s + stroke.pen.duration_s + kGapS,
                   StraightStroke(stroke.pen, t_hover, kScreenWidthPx, kScreenHeightPx));
     const double t0 = t_hover + stroke.pen.hover_s;  // tip down
-    windows.push_back(
-        {static_cast<std::size_t>(std::llround((t0 + kSettleS + delay_s) * fs)),
-         static_cast<std::size_t>(std::llround((t0 + stroke.pen.duration_s + delay_s) * fs))});
+    const double begin = measurement.whole_strokes ? t0 : t0 + kSettleS;
+    const double end = t0 + stroke.pen.duration_s + (measurement.whole_strokes ? kGapS : 0.0);
+    windows.push_back({static_cast<std::size_t>(std::llround((begin + delay_s) * fs)),
+                       static_cast<std::size_t>(std::llround((end + delay_s) * fs))});
+  }
+  // Every stroke's 400 ms windows, 100 ms apart, measured in one pass with the strokes' own.
+  const auto window = static_cast<std::size_t>(std::llround(kMomentaryWindowS * fs));
+  const auto hop = static_cast<std::size_t>(std::llround(kMomentaryHopS * fs));
+  std::vector<surface::FrameWindow> all_windows = windows;
+  std::vector<std::pair<std::size_t, std::size_t>> momentary_range;  // per stroke: [first, last)
+  for (const auto& w : windows) {
+    const std::size_t first = all_windows.size();
+    for (std::size_t start = w.from; start == w.from || start + window <= w.to; start += hop) {
+      all_windows.push_back({start, start + window});
+    }
+    momentary_range.emplace_back(first, all_windows.size());
   }
 
   const std::span<const float> all(visit.output());
-  const std::vector<double> loudness = surface::KWeightedLoudnessDb(all, fs, windows, 2);
+  const std::vector<double> loudness = surface::KWeightedLoudnessDb(all, fs, all_windows, 2);
   std::vector<StrokeLevels> result;
   for (std::size_t w = 0; w < windows.size(); ++w) {
     const auto [from, to] = windows[w];
     StrokeLevels levels;
     levels.sound_lufs = loudness[w];
+    levels.sound_momentary_max_lufs = surface::kSilenceDb;
+    for (std::size_t m = momentary_range[w].first; m < momentary_range[w].second; ++m) {
+      levels.sound_momentary_max_lufs = std::max(levels.sound_momentary_max_lufs, loudness[m]);
+    }
     levels.haptic_rms_db = surface::RmsDb(all.subspan(1), from, to, 2);
     for (std::size_t i = from; i < to && 2 * i + 1 < all.size(); ++i) {
       levels.sound_peak = std::max(levels.sound_peak, static_cast<double>(std::fabs(all[2 * i])));

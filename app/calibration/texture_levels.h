@@ -37,11 +37,11 @@
 // The haptic gain is capped at kMaxHapticGainDb. A texture whose material has no mode in the
 // transducer's band (a glass tile whose modes all lie above 3 kHz) vibrates only with the
 // contact's low-frequency content, which between its cracks is next to nothing; measured on the
-// sustained stroke (without the landing click) its gain would reach the cap. The cap only stops a broken material from getting
-// an absurd gain (the output stage's haptic ceiling and soft limiter bound the transducer's peaks
-// anyway); a capped texture vibrates weaker than the others on average and its [levels] say so,
-// so the per-stroke correction (up to stroke_gain.h's limit) makes up the difference stroke by
-// stroke. Offline only (texture_generator, tests).
+// sustained stroke (without the landing click) its gain would reach the cap. The cap only stops a
+// broken material from getting an absurd gain (the output stage's haptic ceiling and soft limiter
+// bound the transducer's peaks anyway); a capped texture vibrates weaker than the others on average
+// and its [levels] say so, so the per-stroke correction (up to stroke_gain.h's limit) makes up the
+// difference stroke by stroke. Offline only (texture_generator, tests).
 
 #include <cstdint>
 #include <string>
@@ -58,7 +58,16 @@ struct StrokeLevels {
   double haptic_rms_db = 0.0;
   double sound_peak = 0.0;  // largest |sample| over the stroke (linear, full scale = 1)
   double haptic_peak = 0.0;
+  // The loudest 400 ms of the sound (EBU R 128 momentary loudness: BS.1770 K-weighted, ungated,
+  // windows every 100 ms) over the measured span; a span shorter than 400 ms is one window from
+  // its start.
+  double sound_momentary_max_lufs = 0.0;
 };
+inline constexpr double kMomentaryWindowS = 0.4;
+// How long after its lift a whole stroke is measured (LevelMeasurement::whole_strokes): the pause
+// before the next stroke.
+inline constexpr double kGapAfterLiftS = 0.15;
+inline constexpr double kMomentaryHopS = 0.1;
 
 // A stroke of the calibration, as visitors make them at the kiosk.
 // The screen the strokes are drawn on, in pixels (KioskEngineOptions' default).
@@ -147,6 +156,10 @@ struct LevelMeasurement {
   // un-pops the bubble wrap as it does between visitors: a population played as one visit would
   // measure a sheet its strokes have popped bare, which no visitor finds.
   int strokes_per_visit = 0;
+  // Measure each stroke whole: from its touch-down (the landing included) to kGapS after its lift
+  // (the lift and the ring it leaves), instead of the sustained span from kSettleS after
+  // touch-down to the lift that the calibration matches.
+  bool whole_strokes = false;
 };
 
 // The population's visits (VisitorPopulation played through MeasureStrokeLevels): a visitor's

@@ -181,3 +181,23 @@ TEST_CASE("stroke leveller: a landing click does not hold the stroke after it do
   CHECK(stroke_db(true) == Approx(free_db).margin(0.1));
   CHECK(stroke_db(false) < free_db - 1.0);  // the same click mid-stroke is levelled
 }
+
+TEST_CASE(
+    "stroke leveller: a landing click is held near the burst allowance over the cap, not let "
+    "through whole") {
+  const double cap = std::pow(10.0, -30.0 / 20.0);  // -30 dBFS RMS
+  // 14 dB over the cap for the whole landing window: a firm pen landing on wood or clods.
+  const double click = std::sqrt(2.0) * cap * std::pow(10.0, 14.0 / 20.0);
+  OutputStage stage = Stage(cap);
+  stage.NewStroke();
+  const std::vector<float> out = PlaySine(stage, click, OutputStage::kLevellerLandingS);
+  // After the burst detector's own window and attack, the click plays within a dB or two of the
+  // allowance (cap + 3 dB = -27 dBFS RMS), not at its own -16 dBFS.
+  const auto settled = static_cast<std::size_t>(0.03 * kFs);
+  const double held = RmsDb(out, settled, out.size());
+  CHECK(held < -30.0 + OutputStage::kBurstOverCapDb + 2.0);
+  CHECK(held > -30.0 - 3.0);  // held, not muted
+  OutputStage open = Stage(0.0);
+  const std::vector<float> free = PlaySine(open, click, OutputStage::kLevellerLandingS);
+  CHECK(RmsDb(free, settled, free.size()) == Approx(-16.0).margin(0.2));
+}
