@@ -156,8 +156,13 @@ int main(int argc, char** argv) {
         failures.push_back(std::move(f));
       }
     }
+    for (auto& f : sas::kiosk::CheckSharpestTexture(names, grids)) {
+      std::printf("FAIL [%s] %s\n", f.key.c_str(), f.text.c_str());
+      failures.push_back(std::move(f));
+    }
     const int relations = (sas::kiosk::ResponseRelationCount() + sas::kiosk::RampRelationCount()) *
-                          static_cast<int>(surfaces.size());
+                              static_cast<int>(surfaces.size()) +
+                          sas::kiosk::kSharpestRelationCount;
     const int holding =
         relations - static_cast<int>(failures.size()) - static_cast<int>(exemptions.size());
     std::printf("%d of %d relations hold, %zu exempt (sliding noise), %zu fail\n", holding,
@@ -188,7 +193,8 @@ int main(int argc, char** argv) {
           "the sharpness by ≥ 1.15× and the vibration; pressure 0.2 → 0.8 raises the sound by ≥ 3 "
           "dB; any two styles' level-normalised third-octave spectra (100 Hz–10 kHz) differ by ≥ 3 "
           "dB on average; through a stroke speeding up from 20 to 400 mm/s, level and sharpness "
-          "follow the speed (Spearman's ρ ≥ 0.6 over its 12 windows). **"
+          "follow the speed (Spearman's ρ ≥ 0.6 over its 12 windows); and broken glass is the "
+          "sharpest texture at every speed (Character, below). **"
        << holding << " of " << relations << " hold, " << exemptions.size() << " are exempt and "
        << failures.size()
        << " fail.**\n\n"
@@ -221,6 +227,21 @@ int main(int argc, char** argv) {
                       c.response.onsets_per_s);
         md << line;
       }
+    }
+    md << "\nHow sharp each surface sounds at each speed: the median sharpness (acum) of its "
+          "styles and pressures. Broken glass should be the sharpest texture at every speed.\n\n"
+          "| surface |";
+    for (const double speed : sas::kiosk::kResponseSpeedsMmS) md << " " << speed << " mm/s |";
+    md << "\n|---|";
+    for (std::size_t k = 0; k < sas::kiosk::kResponseSpeedsMmS.size(); ++k) md << "---|";
+    md << "\n";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      md << "| " << names[i] << " |";
+      for (const double speed : sas::kiosk::kResponseSpeedsMmS) {
+        std::snprintf(line, sizeof line, " %.2f |", sas::kiosk::SharpnessAtSpeed(grids[i], speed));
+        md << line;
+      }
+      md << "\n";
     }
     md << "\n## Speeding up\n\nOne stroke per style and pressure whose speed rises steadily "
           "from "

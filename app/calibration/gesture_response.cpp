@@ -449,6 +449,51 @@ std::vector<ResponseFailure> CheckRamps(const std::string& surface_name,
   return out;
 }
 
+double SharpnessAtSpeed(const std::vector<ResponseCell>& grid, double speed_mm_s) {
+  std::vector<double> v;
+  for (const ResponseCell& c : grid) {
+    if (c.stroke.speed_mm_s == speed_mm_s) v.push_back(c.response.sharpness_acum);
+  }
+  return Median(std::move(v));
+}
+
+std::vector<ResponseFailure> CheckSharpestTexture(
+    const std::vector<std::string>& names, const std::vector<std::vector<ResponseCell>>& grids) {
+  constexpr const char* kGlass = "broken glass";
+  std::vector<ResponseFailure> out;
+  const auto glass = std::find(names.begin(), names.end(), kGlass);
+  for (const double speed : kResponseSpeedsMmS) {
+    char key[96];
+    std::snprintf(key, sizeof key, "character/glass-sharpest/%.0fmm/s", speed);
+    if (glass == names.end()) {
+      out.push_back({key, "no broken glass among the surfaces"});
+      continue;
+    }
+    const double glass_acum =
+        SharpnessAtSpeed(grids[static_cast<std::size_t>(glass - names.begin())], speed);
+    std::string sharper;
+    for (std::size_t i = 0; i < names.size() && i < grids.size(); ++i) {
+      if (names[i] == kGlass || names[i] == "voice") continue;
+      const double acum = SharpnessAtSpeed(grids[i], speed);
+      if (!(glass_acum > acum)) {
+        char one[96];
+        std::snprintf(one, sizeof one, "%s%s %.2f", sharper.empty() ? "" : ", ", names[i].c_str(),
+                      acum);
+        sharper += one;
+      }
+    }
+    if (!sharper.empty()) {
+      char text[400];
+      std::snprintf(text, sizeof text,
+                    "at %.0f mm/s broken glass (%.2f acum, the median of its styles and pressures) "
+                    "is not the sharpest texture: %s",
+                    speed, glass_acum, sharper.c_str());
+      out.push_back({key, text});
+    }
+  }
+  return out;
+}
+
 int ResponseRelationCount() {
   const int styles = static_cast<int>(kResponseStyles.size());
   const int speeds = static_cast<int>(kResponseSpeedsMmS.size());

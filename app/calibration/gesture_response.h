@@ -194,6 +194,17 @@ std::vector<ResponseFailure> CheckRamps(const std::string& surface_name,
 // How many relations CheckRamps checks on one surface.
 int RampRelationCount();
 
+// How sharp a surface sounds at one speed of the grid: the median sharpness of its cells at that
+// speed (every style and pressure).
+double SharpnessAtSpeed(const std::vector<ResponseCell>& grid, double speed_mm_s);
+// Broken glass is the sharpest of the kiosk textures at every speed of the grid (the voice surface
+// is not a texture and is left out): one relation per speed, key
+// "character/glass-sharpest/<speed>mm/s", its text naming the sharper textures with figures.
+// `names[i]` is the surface of `grids[i]`.
+std::vector<ResponseFailure> CheckSharpestTexture(
+    const std::vector<std::string>& names, const std::vector<std::vector<ResponseCell>>& grids);
+inline constexpr int kSharpestRelationCount = static_cast<int>(kResponseSpeedsMmS.size());
+
 // A level for the figures: "-42.5", or "< -150" where the render is silent and what is left is
 // the float residue of a decaying ring (-220 dB is not a level anyone hears). A print floor, not
 // surface::kSilenceDb (the value Loudness returns for digital silence).

@@ -12,9 +12,10 @@
 namespace sas::kiosk {
 namespace {
 
-// Impulse of a bubble's pop at strength 1 (N·s): a few tenths of a metre per second given to the
-// probe, well above a tap's landing speed, so a pop stands out from the rubbing around it.
-constexpr double kPopImpulseNs = 0.002;
+// Speed a bubble's pop at strength 1 gives the probe (m/s), as an impulse on the material's probe
+// mass: well above a tap's landing speed, so a pop stands out from the rubbing around it. A speed,
+// not an impulse, so the pop's sound does not depend on how heavy the pen's nib is.
+constexpr double kPopSpeedMps = 0.4;
 // Tip force a pen's full pressure stands for when pressing a bubble (N). The synth's mapping tops
 // out at 2 N (gesture.h: what a stroke feels), below the bubbles' 2.5 N pop force; a pen
 // saturates its pressure scale at roughly 4 N of tip force, so a firm press (pressure > 0.6) pops.
@@ -141,7 +142,10 @@ void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::Pr
     auto& state = textures_[static_cast<std::size_t>(bubble_texture_)].loaded.bubbles;
     if (state) {
       if (const auto pop = state->Press(fx, fy, pressure * kBubblePressMaxForceN)) {
-        command.burst_impulse_n_s = kPopImpulseNs * pop->strength;
+        command.burst_impulse_n_s =
+            kPopSpeedMps *
+            textures_[static_cast<std::size_t>(bubble_texture_)].material.params.probe.mass_kg *
+            pop->strength;
         bubbles_dirty_ = true;
       }
     }

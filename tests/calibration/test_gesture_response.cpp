@@ -50,6 +50,9 @@ const std::set<std::string>& KnownOpen() {
       "voice/speed-sound/scrape/p0.8",
       "voice/ramp-sharpness/scrape/p0.8",
       "voice/ramp-sharpness/roll/p0.8",
+      "character/glass-sharpest/30mm/s",
+      "character/glass-sharpest/100mm/s",
+      "character/glass-sharpest/300mm/s",
   };
   return keys;
 }
@@ -137,6 +140,37 @@ TEST_CASE(
     if (f.key.find("style-spectra/scrape-roll/") != std::string::npos) ++style_failures;
   }
   CHECK(style_failures == 6);  // every speed and pressure
+}
+
+TEST_CASE(
+    "gesture response: broken glass must be the sharpest texture at every speed, the voice "
+    "surface left out",
+    "[kiosk][gesture]") {
+  // Two cells per speed for each surface, sharpness rising with speed; glass the sharpest.
+  const auto grid = [](double base) {
+    std::vector<ResponseCell> g;
+    for (const double speed : sas::kiosk::kResponseSpeedsMmS) {
+      for (const double pressure : sas::kiosk::kResponsePressures) {
+        ResponseCell c;
+        c.stroke = {ProbeStyle::kScrape, speed, pressure};
+        c.response.sharpness_acum = base + speed / 1000.0;
+        g.push_back(c);
+      }
+    }
+    return g;
+  };
+  const std::vector<std::string> names = {"bubble wrap", "broken glass", "wooden board", "voice"};
+  std::vector<std::vector<ResponseCell>> grids = {grid(1.0), grid(2.0), grid(1.5), grid(3.0)};
+  CHECK(sas::kiosk::SharpnessAtSpeed(grids[1], 100.0) == Approx(2.1));
+  CHECK(sas::kiosk::CheckSharpestTexture(names, grids).empty());  // the voice does not count
+  // The wooden board sharper than the glass at 300 mm/s only.
+  for (auto& c : grids[2]) {
+    if (c.stroke.speed_mm_s == 300.0) c.response.sharpness_acum = 2.5;
+  }
+  const auto failures = sas::kiosk::CheckSharpestTexture(names, grids);
+  REQUIRE(failures.size() == 1);
+  CHECK(failures[0].key == "character/glass-sharpest/300mm/s");
+  CHECK(failures[0].text.find("wooden board 2.50") != std::string::npos);
 }
 
 TEST_CASE(
@@ -267,8 +301,12 @@ TEST_CASE(
   int holding = 0;
   int exempt = 0;
   std::set<std::string> failing, exempted;
+  std::vector<std::string> names;
+  std::vector<std::vector<ResponseCell>> grids;
   for (const auto& surface : surfaces) {
     const std::vector<ResponseCell> grid = sas::kiosk::MeasureResponseGrid(surface);
+    names.push_back(surface.name);
+    grids.push_back(grid);
     REQUIRE(grid.size() == 18);
     // Every stroke was heard: the measurement itself is not silent.
     for (const auto& c : grid) {
@@ -305,8 +343,17 @@ TEST_CASE(
       ++exempt;
     }
   }
+  // Character across the textures: broken glass the sharpest at every speed.
+  const auto sharpest = sas::kiosk::CheckSharpestTexture(names, grids);
+  holding += sas::kiosk::kSharpestRelationCount - static_cast<int>(sharpest.size());
+  for (const auto& f : sharpest) {
+    INFO(f.text);
+    CHECK(KnownOpen().count(f.key) == 1);
+    failing.insert(f.key);
+  }
   WARN(holding << " of "
-               << 5 * (sas::kiosk::ResponseRelationCount() + sas::kiosk::RampRelationCount())
+               << 5 * (sas::kiosk::ResponseRelationCount() + sas::kiosk::RampRelationCount()) +
+                      sas::kiosk::kSharpestRelationCount
                << " relations hold (" << exempt
                << " of them exempt); known open: " << KnownOpen().size());
   // The list stays exact: a relation that now holds must leave it, so it cannot hide a later
