@@ -21,6 +21,7 @@ using sas::kiosk::CheckResponseGrid;
 using sas::kiosk::ResponseCell;
 using sas::synth::ProbeStyle;
 
+#if !defined(__SANITIZE_ADDRESS__)
 // The relations today's materials do not meet, measured by `gesture_response` and listed with
 // their figures in docs/gesture-response.md. The models and materials are to be changed until
 // this list is empty; a change that breaks a relation not listed here fails the test, and one
@@ -69,6 +70,7 @@ const std::set<std::string>& KnownExempt() {
   };
   return keys;
 }
+#endif
 
 // A grid whose every relation holds by construction: level +8 dB and sharpness x1.5 from the slow
 // to the fast speed, +4 dB from light to firm, and three styles with clearly different spectra.
@@ -289,6 +291,35 @@ TEST_CASE(
   CHECK(check.failures.size() == 1);
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+// The sanitizer build (~10x slower: the whole grid took 486 s there) measures one surface at one
+// place: the measuring path runs, every stroke and window is heard and the checks run on real
+// figures; the relations themselves are the normal build's.
+TEST_CASE("gesture response: one surface at one place measures, and is heard", "[kiosk][gesture]") {
+  const auto surfaces = sas::kiosk::LoadResponseSurfaces(
+      (std::filesystem::path(sas::kSourceDir) / "textures").string());
+  REQUIRE(surfaces.size() == 5);
+  const auto& glass = surfaces[1];
+  const std::vector<ResponseCell> grid = sas::kiosk::MeasureResponseGrid(glass, 1);
+  REQUIRE(grid.size() == 18);
+  for (const auto& c : grid) {
+    CHECK(c.response.sound_db > -140.0);
+    CHECK(c.response.sharpness_acum > 0.1);
+  }
+  const auto ramps = sas::kiosk::MeasureRamps(glass, 1);
+  REQUIRE(ramps.size() == 6);
+  for (const auto& r : ramps) {
+    for (const double db : r.sound_db) CHECK(db > -140.0);
+  }
+  // The checks run on the measured figures and name what they find on this surface.
+  auto found = CheckResponseGrid(glass.name, grid).failures;
+  for (auto& f : sas::kiosk::CheckRamps(glass.name, ramps)) found.push_back(f);
+  for (const auto& f : found) {
+    CHECK(f.key.rfind("broken glass/", 0) == 0);
+    CHECK(f.text.rfind("broken glass, ", 0) == 0);
+  }
+}
+#else
 TEST_CASE(
     "gesture response: on the four kiosk textures and the voice surface, no relation "
     "beyond the known open ones fails (medians of 8 places: speed 30 -> 300 mm/s gives +6 dB, "
@@ -367,3 +398,4 @@ TEST_CASE(
     CHECK(exempted.count(key) == 1);
   }
 }
+#endif
