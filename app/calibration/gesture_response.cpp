@@ -44,18 +44,19 @@ struct Span {
   std::vector<float> haptic;
 };
 
-// Renders one stroke along (x0, y0) + s (dx, dy), s in [0, kPathMm], and returns the motion span.
-Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double x0_mm,
-                double y0_mm, double dx, double dy, double fs_hz) {
+// A scene for `surface` with the pen resting on it at (x0, y0) mm, held as `stroke` says (a rub
+// tilted, scrape and roll upright), facing (dx, dy): it has landed at kLandingMps and settled for
+// kRestS. Returns the resting pen's command, for the motion to follow.
+synth::ProbeCommand LandPen(synth::Scene& scene, const ResponseSurface& surface,
+                            const HandStroke& stroke, double x0_mm, double y0_mm, double dx,
+                            double dy, double fs_hz) {
   const GestureMapping mapping;
-  synth::Scene scene;
   scene.Init(fs_hz);
   scene.Prepare(surface.material, synth::OutputParams{}, surface.field->View());
   synth::ProbeCommand pen;
   pen.tip_down = true;
   pen.x_m = x0_mm * 1e-3;
   pen.y_m = y0_mm * 1e-3;
-  // A rub is held tilted, scrape and roll upright; the style is the stroke's.
   ApplyPenPressure(stroke.pressure, surface::ReliefM(*surface.field), mapping, pen);
   ApplyPenTilt(stroke.style == synth::ProbeStyle::kRub ? kTiltRubDeg : 0.0, ProbeShape{},
                stroke.style, mapping, pen);
@@ -63,12 +64,19 @@ Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double
   pen.direction_y = dy;
   pen.landing_speed_mps = kLandingMps;
   pen.velocity_mps = 0.0;
-
   const auto rest = static_cast<int>(std::lround(kRestS * fs_hz));
-  const auto motion = static_cast<int>(std::lround(kPathMm / stroke.speed_mm_s * fs_hz));
-  std::vector<float> buffer(2 * static_cast<std::size_t>(std::max(rest, motion)));
+  std::vector<float> buffer(2 * static_cast<std::size_t>(rest));
   scene.Process(&pen, 1, buffer.data(), rest);
-  synth::ProbeCommand move = pen;
+  return pen;
+}
+
+// Renders one stroke along (x0, y0) + s (dx, dy), s in [0, kPathMm], and returns the motion span.
+Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double x0_mm,
+                double y0_mm, double dx, double dy, double fs_hz) {
+  synth::Scene scene;
+  synth::ProbeCommand move = LandPen(scene, surface, stroke, x0_mm, y0_mm, dx, dy, fs_hz);
+  const auto motion = static_cast<int>(std::lround(kPathMm / stroke.speed_mm_s * fs_hz));
+  std::vector<float> buffer(2 * static_cast<std::size_t>(motion));
   move.velocity_mps = stroke.speed_mm_s * 1e-3;
   scene.Process(&move, 1, buffer.data(), motion);
   Span span;
@@ -86,26 +94,11 @@ Span PlayStroke(const ResponseSurface& surface, const HandStroke& stroke, double
 // of the motion.
 std::vector<float> PlayRamp(const ResponseSurface& surface, const HandStroke& stroke, double x0_mm,
                             double y0_mm, double dx, double dy, double accel_mm_s2, double fs_hz) {
-  const GestureMapping mapping;
   synth::Scene scene;
-  scene.Init(fs_hz);
-  scene.Prepare(surface.material, synth::OutputParams{}, surface.field->View());
-  synth::ProbeCommand pen;
-  pen.tip_down = true;
-  pen.x_m = x0_mm * 1e-3;
-  pen.y_m = y0_mm * 1e-3;
-  ApplyPenPressure(stroke.pressure, surface::ReliefM(*surface.field), mapping, pen);
-  ApplyPenTilt(stroke.style == synth::ProbeStyle::kRub ? kTiltRubDeg : 0.0, ProbeShape{},
-               stroke.style, mapping, pen);
-  pen.direction_x = dx;
-  pen.direction_y = dy;
-  pen.landing_speed_mps = kLandingMps;
-  pen.velocity_mps = 0.0;
-  const auto rest = static_cast<int>(std::lround(kRestS * fs_hz));
+  const synth::ProbeCommand pen = LandPen(scene, surface, stroke, x0_mm, y0_mm, dx, dy, fs_hz);
   const auto motion = static_cast<int>(std::lround(kRampS * fs_hz));
   const int block = static_cast<int>(std::lround(fs_hz / 1000.0));
-  std::vector<float> buffer(2 * static_cast<std::size_t>(std::max(rest, block)));
-  scene.Process(&pen, 1, buffer.data(), rest);
+  std::vector<float> buffer(2 * static_cast<std::size_t>(block));
   std::vector<float> sound;
   sound.reserve(static_cast<std::size_t>(motion));
   for (int at = 0; at < motion; at += block) {
@@ -123,7 +116,7 @@ std::vector<float> PlayRamp(const ResponseSurface& surface, const HandStroke& st
   return sound;
 }
 
-double MeanSquare(const std::vector<float>& x) {
+double MeanSquare(std::span<const float> x) {
   double sum = 0.0;
   for (const float v : x) sum += static_cast<double>(v) * v;
   return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
@@ -234,11 +227,9 @@ double Median(std::vector<double> v) {
 
 // Sharpness heard at kListeningDbSpl (gesture_response.h); 0 for a silent span.
 double HeardSharpness(std::span<const float> x, double fs_hz) {
-  double sum = 0.0;
-  for (const float v : x) sum += static_cast<double>(v) * v;
-  if (x.empty() || sum <= 1e-24 * static_cast<double>(x.size())) return 0.0;
-  const double rms_db = PowerDb(sum / static_cast<double>(x.size()));
-  return Sharpness(x, fs_hz, kListeningDbSpl - rms_db);
+  const double mean_square = MeanSquare(x);
+  if (!(mean_square > 1e-24)) return 0.0;
+  return Sharpness(x, fs_hz, kListeningDbSpl - PowerDb(mean_square));
 }
 
 }  // namespace
@@ -354,9 +345,7 @@ RampResponse MeasureRamp(const ResponseSurface& surface, synth::ProbeStyle style
     for (int w = 0; w < kRampWindows; ++w) {
       const std::span<const float> part(sound.data() + static_cast<std::size_t>(w) * window,
                                         static_cast<std::size_t>(window));
-      double sum = 0.0;
-      for (const float v : part) sum += static_cast<double>(v) * v;
-      level[static_cast<std::size_t>(w)].push_back(PowerDb(sum / window));
+      level[static_cast<std::size_t>(w)].push_back(PowerDb(MeanSquare(part)));
       sharp[static_cast<std::size_t>(w)].push_back(HeardSharpness(part, fs_hz));
     }
   }

@@ -43,6 +43,20 @@ const std::set<std::string>& KnownSilent() {
   return keys;
 }
 
+constexpr const char* kKioskTextures[] = {"bubble_wrap", "broken_glass", "wooden_board",
+                                          "cracked_ground"};
+
+// The kiosk as shipped (install/kiosk.toml) showing `texture`, on the virtual clock, no cues.
+sas::kiosk::KioskEngineOptions ShippedKiosk(const char* texture) {
+  sas::kiosk::KioskEngineOptions options;
+  options.config =
+      sas::kiosk::LoadKioskConfig(std::string(sas::kSourceDir) + "/install/kiosk.toml");
+  options.config.default_texture = texture;
+  options.virtual_clock = true;
+  options.spoken_cues = false;
+  return options;
+}
+
 double QuietestWindowDbfs(const std::vector<float>& out, std::size_t from, std::size_t to,
                           std::size_t window) {
   double quietest = 1e300;
@@ -61,15 +75,9 @@ double QuietestWindowDbfs(const std::vector<float>& out, std::size_t from, std::
 
 TEST_CASE("no stroke over a kiosk texture is silent while the pen moves, in any style",
           "[calibration]") {
-  const std::string config = std::string(sas::kSourceDir) + "/install/kiosk.toml";
   std::set<std::string> silent;
-  for (const char* texture : {"bubble_wrap", "broken_glass", "wooden_board", "cracked_ground"}) {
-    sas::kiosk::KioskEngineOptions options;
-    options.config = sas::kiosk::LoadKioskConfig(config);
-    options.config.default_texture = texture;
-    options.virtual_clock = true;
-    options.spoken_cues = false;
-    sas::kiosk::KioskEngine engine(options);
+  for (const char* texture : kKioskTextures) {
+    sas::kiosk::KioskEngine engine(ShippedKiosk(texture));
     REQUIRE(engine.texture_failures().empty());
     sas::kiosk::VirtualVisit visit(engine);
     const double fs = visit.sample_rate_hz();
@@ -135,15 +143,9 @@ TEST_CASE(
     "a pen lifted in one step over a kiosk texture makes no sound louder than the stroke it "
     "ends, landing included",
     "[calibration]") {
-  const std::string config = std::string(sas::kSourceDir) + "/install/kiosk.toml";
   std::set<std::string> loud;
-  for (const char* texture : {"bubble_wrap", "broken_glass", "wooden_board", "cracked_ground"}) {
-    sas::kiosk::KioskEngineOptions options;
-    options.config = sas::kiosk::LoadKioskConfig(config);
-    options.config.default_texture = texture;
-    options.virtual_clock = true;
-    options.spoken_cues = false;
-    sas::kiosk::KioskEngine engine(options);
+  for (const char* texture : kKioskTextures) {
+    sas::kiosk::KioskEngine engine(ShippedKiosk(texture));
     REQUIRE(engine.texture_failures().empty());
     sas::kiosk::VirtualVisit visit(engine);
     const double fs = visit.sample_rate_hz();
