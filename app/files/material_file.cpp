@@ -117,6 +117,8 @@ const std::vector<KeySpec<synth::ProbeParams>>& ProbeKeys() {
   static const std::vector<KeySpec<P>> keys = {
       {"mass_kg", Real(&P::mass_kg, 1e-4, 1.0)},
       {"ball_radius_m", Real(&P::ball_radius_m, 1e-4, 0.05)},
+      {"body_mass_kg", Real(&P::body_mass_kg, 0.0, 1.0), true},
+      {"body_spring_n_per_m", Real(&P::body_spring_n_per_m, 1e2, 1e7), true},
   };
   return keys;
 }
@@ -353,7 +355,9 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
 }
 
 double RingDownSeconds(const synth::MaterialParams& params, int* worst_mode) {
-  const double impulse = 2.0 * params.probe.mass_kg * kRingDownTapMps;
+  // The whole pen taps: a body behind the nib lands on it through the sensor spring within a
+  // couple of milliseconds, an impulse to every mode under a few hundred hertz.
+  const double impulse = 2.0 * (params.probe.mass_kg + params.probe.body_mass_kg) * kRingDownTapMps;
   const auto amplitude = [&](double t, int* loudest) {
     double sum = 0.0, best = -1.0;
     for (int i = 0; i < params.resonator.mode_count; ++i) {

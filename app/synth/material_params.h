@@ -77,8 +77,13 @@ struct FrictionParams {
 
 // The stylus tip as a point mass, and the shape that rolls (roll style).
 struct ProbeParams {
-  double mass_kg = 0.01;
+  double mass_kg = 0.01;  // what strikes the surface: the nib, or the whole pen without a body
   double ball_radius_m = 2e-3;
+  // The pen's body, held by the hand, riding on the nib through the pressure sensor's spring. 0:
+  // no body, the hand's push reaches the tip as a steady force (a rigid pen of mass_kg). Only
+  // with the impact model on (the spring needs a tip that can move).
+  double body_mass_kg = 0.0;
+  double body_spring_n_per_m = 1e4;
 };
 
 // Output stage: channel 1 speaker, channel 2 vibrotactile transducer.

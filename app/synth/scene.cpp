@@ -82,6 +82,12 @@ constexpr double kLiftSpeedMps = 0.1;
 constexpr double kFingerPulpNPerM = 1e3;
 constexpr double kMinUnloadS = 0.02;
 constexpr double kMaxUnloadS = 0.05;
+// A pen with a body (ProbeParams::body_mass_kg): the hand grips the body, and the grip damps it,
+// a few N s/m at the fingertips (Hajian & Howe, J. Biomech. Eng. 119(1), 1997: 1.5-3.5 N s/m on
+// an index finger); the sensor spring between body and nib is an elastomer with a loss factor of
+// about 0.1 at the body's resonance (Nashif, Jones & Henderson, "Vibration Damping", 1985).
+constexpr double kGripDampingNsPerM = 2.0;
+constexpr double kSensorLossFactor = 0.1;
 
 }  // namespace
 
@@ -110,6 +116,15 @@ struct Scene::Impl {
   double release_gain = 0.0;  // output_gain · Σ |g_i| / (m_i ω0_i): pickup per newton released
   double max_abs_gain = 0.0;  // output_gain · max |g_i|
   double felt_per_newton = 0.0;  // contact force -> transducer input (RenderFrame)
+  // The pen's body (ProbeParams::body_mass_kg > 0, impact on): a second mass above the nib (the
+  // probe), joined by the pressure sensor's spring; the hand's push acts on the body. Heights as
+  // the probe's; at rest without load the body sits at the nib's height.
+  bool pen_body = false;
+  double body_inv_mass = 0.0;
+  double body_spring_n_per_m = 0.0;
+  double body_damping_n_s_per_m = 0.0;  // the sensor spring's own damping
+  double body_height_m = 0.0;
+  double body_velocity_mps = 0.0;
 
   // Gesture state set by the last command.
   ProbeCommand gesture{};
@@ -122,7 +137,7 @@ struct Scene::Impl {
   // and `unload_after` (the pen-up command, or the latest one of the pen hovering since) applies.
   bool unloading = false;
   int unload_samples = 0;                  // samples since the lift
-  double unload_tip_m = 0.0;               // the probe's height at the lift
+  double unload_tip_m = 0.0;               // the height the hand holds (body, or tip) at the lift
   double unload_rise_mps = kLiftSpeedMps;  // the hand's rise while the tip still bears load
   double unload_hand_m = 0.0;              // how far the hand has risen since the lift
   ProbeCommand unload_after{};
@@ -193,6 +208,7 @@ struct Scene::Impl {
     unload_samples = 0;
     unload_tip_m = 0.0;
     unload_after = ProbeCommand{};
+    body_height_m = body_velocity_mps = 0.0;
     noise_state = kNoiseSeed;
     rough_keep = 1.0;
     rough_in = contact_step = 0.0;
@@ -245,6 +261,10 @@ struct Scene::Impl {
     if (config.impact.enabled) {
       probe_motion = std::fabs(probe.velocity_mps) + std::fabs(drive.push_n - probe.normal_n) *
                                                          config.period_s / config.probe_mass_kg;
+      if (pen_body) {  // the body moving, or its forces out of balance, would move the tip
+        probe_motion += std::fabs(body_velocity_mps) +
+                        std::fabs(drive.push_n - Push()) * config.period_s * body_inv_mass;
+      }
     }
     // Σ amplitudes <= sqrt(count · Σ squares) (Cauchy–Schwarz); times the largest pickup gain.
     const double limit = kFrictionSkipAmplitude / (max_abs_gain * stroke_bound + 1e-300);
@@ -354,6 +374,10 @@ struct Scene::Impl {
     probe.active = true;
     probe.height_m = surface_m + modes.ContactDisplacement();
     probe.velocity_mps = velocity_mps;
+    // The pen comes down whole, its sensor spring unloaded: the body meets the surface through
+    // it a few milliseconds after the nib.
+    body_height_m = probe.height_m;
+    body_velocity_mps = velocity_mps;
   }
 
   // A burst's impulse (N s) on the probe, towards the surface.
@@ -364,11 +388,46 @@ struct Scene::Impl {
   // The pen's push on the tip (N, down; negative pulls it up). While unloading: the pulp spring,
   // compressed by the stroke's push at the lift, relaxed by the hand's rise, compressed again by
   // the tip's own rise (a surface springing back under it).
+  // With a pen body, the push acts on the body, and the tip feels the sensor spring (TipPush).
   double Push() const {
     if (!gesture.tip_down) return 0.0;
     if (!unloading) return gesture.normal_force_n;
     return gesture.normal_force_n -
-           kFingerPulpNPerM * (unload_hand_m - (probe.height_m - unload_tip_m));
+           kFingerPulpNPerM * (unload_hand_m - (HeldHeight() - unload_tip_m));
+  }
+  double HeldHeight() const { return pen_body ? body_height_m : probe.height_m; }
+
+  // How fast the hand rises while unloading (m/s). With a pen body it gathers speed smoothly over
+  // kMinUnloadS (a reach's bell-shaped speed, Flash & Hogan, J. Neurosci. 5(7), 1985): a step in
+  // the hand's speed would set the body ringing on the fingers' pulp (~40 Hz for 15 g) by more
+  // than the sensor spring is compressed, and the nib would be let go in a millisecond.
+  double HandRiseMps() const {
+    const double rise = Push() > 0.0 ? unload_rise_mps : kLiftSpeedMps;
+    if (!pen_body) return rise;
+    const double t = static_cast<double>(unload_samples) / (fs * kMinUnloadS);
+    return t >= 1.0 ? rise : rise * t * t * (3.0 - 2.0 * t);
+  }
+
+  // What presses the tip down (N): the sensor spring, compressed as the body comes down on the
+  // nib, or the push itself on a pen without a body.
+  double TipPush() const {
+    if (!pen_body) return Push();
+    return body_spring_n_per_m * (probe.height_m - body_height_m) +
+           body_damping_n_s_per_m * (probe.velocity_mps - body_velocity_mps);
+  }
+
+  // One sample of the body: the sensor spring pushes it up as hard as it pushes the nib down, the
+  // hand pushes it down, the grip damps it (semi-implicit Euler: its resonance, ~130 Hz on a 15 g
+  // body and 1e4 N/m, is far under the sample rate).
+  void StepBody() {
+    // The grip's damping acts between the fingers and the body: against the body's motion
+    // relative to the hand, which rises while the pen is lifted.
+    const double hand_mps = unloading ? HandRiseMps() : 0.0;
+    const double acc =
+        (TipPush() - Push() - kGripDampingNsPerM * (body_velocity_mps - hand_mps)) *
+        body_inv_mass;
+    body_velocity_mps += acc / fs;
+    body_height_m += body_velocity_mps / fs;
   }
 
   // The unload is over: the tip has left, the pen-up command applies.
@@ -411,7 +470,7 @@ struct Scene::Impl {
                config.impact.enabled && gesture.normal_force_n > 0.0) {
       unloading = true;
       unload_samples = 0;
-      unload_tip_m = probe.height_m;
+      unload_tip_m = HeldHeight();
       unload_hand_m = 0.0;
       unload_rise_mps =
           std::min(kLiftSpeedMps, gesture.normal_force_n / (kFingerPulpNPerM * kMinUnloadS));
@@ -461,7 +520,7 @@ struct Scene::Impl {
       drive.surface_begin_m = surface_m;
       drive.surface_end_m = next;
       drive.slide_velocity_mps = gesture.tip_down ? gesture.velocity_mps : 0.0;
-      drive.push_n = Push();
+      drive.push_n = TipPush();
       drive.friction_share = SurfaceReader::FrictionShare(gesture.style, gesture.width_mm);
       if (config.friction.enabled && config.friction.sigma3 > 0.0 &&
           drive.slide_velocity_mps > 0.0) {
@@ -482,6 +541,7 @@ struct Scene::Impl {
       if (friction_skipped) drive.friction_share = 0.0;  // the kernel neither solves nor stores it
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
+      if (pen_body) StepBody();
       // A grain of a crumbling crust broke under the tip: its flake flies off, the crust takes
       // the reaction (down).
       if (crumble.enabled() && drive.slide_velocity_mps > 0.0) {
@@ -491,7 +551,7 @@ struct Scene::Impl {
       }
       // Last line of defence against absurd input: a non-finite probe is parked, never kept.
       if (!std::isfinite(probe.height_m + probe.velocity_mps + probe.bristle_m + probe.normal_n +
-                         probe.friction_n)) {
+                         probe.friction_n + body_height_m + body_velocity_mps)) {
         probe = ProbeDynamics{};
         burst_flight = false;
       }
@@ -508,12 +568,18 @@ struct Scene::Impl {
     }
     const double pickup = modes.PickupVelocity() + crumble.Ring();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
-    // The stylus carries the contact force to the hand whether or not the surface rings in the
-    // transducer's band (glass: modes from 683 Hz, most above 800 Hz): as the velocity that force
-    // gives the probe's mass at 250 Hz, where the skin's Pacinian receptors are most sensitive
-    // (Verrillo, JASA 35(12) 1963). The band-pass drops its steady part; what is felt is its
-    // fluctuation.
-    const double felt = probe.active ? (probe.normal_n + probe.friction_n) * felt_per_newton : 0.0;
+    // The stylus carries the contact to the hand whether or not the surface rings in the
+    // transducer's band (glass: modes from 683 Hz, most above 800 Hz). With a pen body, what the
+    // hand holds is the body: its velocity along the pen, which follows the relief below the
+    // body's resonance and the contact force's fluctuation above it. Along the stroke (and
+    // without a body, for the whole force) the force as the velocity it gives the pen's mass at
+    // 250 Hz, where the skin's Pacinian receptors are most sensitive (Verrillo, JASA 35(12) 1963).
+    // The band-pass drops the steady part; what is felt is the fluctuation.
+    double felt = 0.0;
+    if (probe.active) {
+      felt = pen_body ? body_velocity_mps + probe.friction_n * felt_per_newton
+                      : (probe.normal_n + probe.friction_n) * felt_per_newton;
+    }
     if (pending == kOutputChunk) FlushOutput();
     if (pending == 0) pending_out = frame;
     pending_pickup[pending] = pickup;
@@ -522,7 +588,7 @@ struct Scene::Impl {
     if (unloading) {
       ++unload_samples;
       // The fingers let the load go gently; once it is gone the arm takes the pen away.
-      unload_hand_m += (Push() > 0.0 ? unload_rise_mps : kLiftSpeedMps) / fs;
+      unload_hand_m += HandRiseMps() / fs;
       // Off: the spring pulls and the tip has left the surface (or the bound is reached).
       const bool off = Push() < 0.0 && probe.compression_m < 0.0;
       if (off || !probe.active || unload_samples >= static_cast<int>(kMaxUnloadS * fs)) {
@@ -565,7 +631,18 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.impact.Set(m.impact);
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
-  s.felt_per_newton = 1.0 / (m.probe.mass_kg * 2.0 * std::numbers::pi * 250.0);
+  s.pen_body = m.impact.enabled && m.probe.body_mass_kg > 0.0 &&
+               std::isfinite(m.probe.body_mass_kg) && m.probe.body_spring_n_per_m > 0.0 &&
+               std::isfinite(m.probe.body_spring_n_per_m);
+  if (s.pen_body) {
+    s.body_inv_mass = 1.0 / m.probe.body_mass_kg;
+    s.body_spring_n_per_m = m.probe.body_spring_n_per_m;
+    // Loss factor η at the body's resonance ω = sqrt(k/m): c = η k / ω = η sqrt(k m).
+    s.body_damping_n_s_per_m =
+        kSensorLossFactor * std::sqrt(m.probe.body_spring_n_per_m * m.probe.body_mass_kg);
+  }
+  const double felt_mass = s.pen_body ? m.probe.body_mass_kg : m.probe.mass_kg;
+  s.felt_per_newton = 1.0 / (felt_mass * 2.0 * std::numbers::pi * 250.0);
   s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
   // Automatic oversampling adapts per compression (contact.h, ContactSubstepsForSpeed).
   const bool adaptive = m.impact.enabled && m.impact.oversample <= 0;
@@ -679,7 +756,14 @@ double Scene::TotalEnergy() const {
   if (s.probe.active) {
     const double m = s.config.probe_mass_kg;
     const double push = s.Push();
-    e += 0.5 * m * s.probe.velocity_mps * s.probe.velocity_mps + push * s.probe.height_m;
+    e += 0.5 * m * s.probe.velocity_mps * s.probe.velocity_mps;
+    if (s.pen_body) {  // the body's motion, the sensor spring and the hand's work on the body
+      const double squeeze = s.probe.height_m - s.body_height_m;
+      e += 0.5 * s.body_velocity_mps * s.body_velocity_mps / s.body_inv_mass +
+           0.5 * s.body_spring_n_per_m * squeeze * squeeze + push * s.body_height_m;
+    } else {
+      e += push * s.probe.height_m;
+    }
     // The energy the scheme holds in the contact: V(x) for the discrete gradient, its own
     // discrete (received / quadratised) energy for the others (synth/contact.h).
     if (s.config.impact.enabled) e += s.probe.contact_energy_j;

@@ -443,3 +443,23 @@ TEST_CASE(
     unsetenv("SAS_DATA_DIR");
   }
 }
+
+TEST_CASE(
+    "a pen body is optional in [probe]: left out, the tip is the whole pen, and given, it is read "
+    "and range-checked",
+    "[kiosk]") {
+  const Material rigid = Parse(kValid);
+  CHECK(rigid.params.probe.body_mass_kg == 0.0);
+  const Material bodied = Parse(Edit("ball_radius_m = 0.002\n",
+                                     "ball_radius_m = 0.002\nbody_mass_kg = 0.015\n"
+                                     "body_spring_n_per_m = 2e4\n"));
+  CHECK(bodied.params.probe.body_mass_kg == 0.015);
+  CHECK(bodied.params.probe.body_spring_n_per_m == 2e4);
+  CHECK_THROWS_WITH(
+      Parse(Edit("ball_radius_m = 0.002\n", "ball_radius_m = 0.002\nbody_mass_kg = -0.01\n")),
+      Catch::Contains("m.toml:9: probe.body_mass_kg:") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(
+      Parse(Edit("ball_radius_m = 0.002\n",
+                 "ball_radius_m = 0.002\nbody_mass_kg = 0.015\nbody_spring_n_per_m = 0\n")),
+      Catch::Contains("m.toml:10: probe.body_spring_n_per_m:") && Catch::Contains("out of range"));
+}
