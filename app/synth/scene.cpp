@@ -72,7 +72,9 @@ constexpr double kMaxSpeed = 100.0;
 // left out). So the tip's load falls as the hand rises — over ~10 ms for 1 N, longer where the
 // surface it pressed down springs back with it — and once the spring is slack it pulls the tip
 // off. Stepping the load away instead releases the surface's whole deflection at once: a pop
-// louder than the stroke on a soft material. The unload is bounded by kMaxUnloadS.
+// louder than the stroke on a soft material. The unload is bounded by kMaxUnloadS: on a soft
+// contact in series with the pulp (bubble wrap: ~1.3e3 N/m at 0.6 N) the load takes ~45 ms to go,
+// and a bound at 50 ms let the rest of it go at once.
 // The fingers do not let a light load go faster than a heavy one: the load leaves over at least
 // kMinUnloadS (the hand rises more slowly while the tip bears load, at kLiftSpeedMps once it
 // does not). At 1 mm/N a light press (0.2 N) went in 2 ms, faster than a bubble's 5.5 ms
@@ -81,7 +83,7 @@ constexpr double kMaxSpeed = 100.0;
 constexpr double kLiftSpeedMps = 0.1;
 constexpr double kFingerPulpNPerM = 1e3;
 constexpr double kMinUnloadS = 0.02;
-constexpr double kMaxUnloadS = 0.05;
+constexpr double kMaxUnloadS = 0.1;
 // A pen with a body (ProbeParams::body_mass_kg): the hand grips the body, and the grip damps it,
 // a few N s/m at the fingertips (Hajian & Howe, J. Biomech. Eng. 119(1), 1997: 1.5-3.5 N s/m on
 // an index finger); the sensor spring between body and nib is an elastomer with a loss factor of

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "synth/contact.h"
+#include "synth/contact_kernel.h"
 #include "synth/scene.h"
 #include "synth_test_support.h"
 
@@ -287,4 +288,24 @@ TEST_CASE(
   }
   CHECK(elastic > 3);
   CHECK(one_piece > 10);
+}
+
+TEST_CASE(
+    "the viscous friction term fades with the contact's area below 0.1 N of load and is the "
+    "material's above it",
+    "[dsp]") {
+  FrictionParams params;
+  params.viscous_friction = 1.0;
+  FrictionModel model;
+  model.Set(params);
+  FrictionModel light;
+  CHECK(&ViscousAtLoad(model, 0.5, light) == &model);  // a stroke's load: untouched
+  CHECK(&ViscousAtLoad(model, kFullViscousLoadN, light) == &model);
+  // Hertz: contact area as load^(2/3); an eighth of the load, a quarter of the area.
+  CHECK(ViscousAtLoad(model, kFullViscousLoadN / 8.0, light).sigma2 == Approx(0.25));
+  CHECK(ViscousAtLoad(model, 0.0, light).sigma2 == 0.0);
+  CHECK(ViscousAtLoad(model, 0.0, light).sigma0 == model.sigma0);  // only σ2 changes
+  FrictionModel none = model;
+  none.sigma2 = 0.0;
+  CHECK(&ViscousAtLoad(none, 0.01, light) == &none);
 }
