@@ -90,6 +90,13 @@ constexpr double kMaxUnloadS = 0.1;
 // about 0.1 at the body's resonance (Nashif, Jones & Henderson, "Vibration Damping", 1985).
 constexpr double kGripDampingNsPerM = 2.0;
 constexpr double kSensorLossFactor = 0.1;
+// A rolling ball does not slide, but its contact creeps: the patch's trailing part micro-slips at
+// a fraction of the rolling speed, of the order 1e-3 to 1e-2 (creep in rolling contact: Johnson,
+// "Contact Mechanics", 1985, ch. 8). That micro-slip breaks the asperity junctions as sliding
+// does, at a rate set by the rolling speed: the friction's noise term σ3 w sqrt(v f_N) at the
+// creep's speed. Without it a slow roll over a smooth stretch rang nothing (-92 to -101 dBFS at
+// 10 mm/s). The upper end of the range: at 3e-3 the quietest slow roll sat on -90 dBFS.
+constexpr double kRollingCreep = 0.01;
 
 }  // namespace
 
@@ -340,9 +347,14 @@ struct Scene::Impl {
     // only once the patch has moved its own length (ploughing and adhesion terms of friction:
     // Bowden & Tabor, "The Friction and Lubrication of Solids", 1950, ch. V). So a rub's noise is
     // darker than a scrape's on the same surface, as a pencil's side sounds duller than its point.
-    const double noise_length = gesture.style == ProbeStyle::kRub
-                                    ? std::max(r.length_m, HertzPatch(r.length_m))
-                                    : r.length_m;
+    // A rolling ball's creep noise (kRollingCreep) comes from the junctions of its whole patch,
+    // renewed as the patch rolls on by its own length, like a rub's.
+    const bool patch_noise =
+        gesture.style == ProbeStyle::kRub || gesture.style == ProbeStyle::kRoll;
+    const double noise_length =
+        gesture.style == ProbeStyle::kRub    ? std::max(r.length_m, HertzPatch(r.length_m))
+        : gesture.style == ProbeStyle::kRoll ? std::max(r.length_m, ContactLength())
+                                             : r.length_m;
     noise_keep = std::exp(-ds / noise_length);
     noise_in = std::sqrt(std::max(1.0 - noise_keep * noise_keep, 0.0));
     // Each junction's force builds up over a slip of about its own size, the asperity scale ℓ
@@ -353,7 +365,7 @@ struct Scene::Impl {
     // louder. (A scrape's noise already renews every ℓ.) Only on a rough surface, where ℓ is
     // the asperities' scale: on a polished one (glass) the junctions are the nib's own.
     noise_junction_step =
-        gesture.style == ProbeStyle::kRub && r.rms_m > 0.0 && noise_length > r.length_m
+        patch_noise && r.rms_m > 0.0 && noise_length > r.length_m
             ? 1.0 - std::exp(-ds / r.length_m)
             : 0.0;
     contact_step = 1.0 - std::exp(-ds / ContactLength());
@@ -544,6 +556,15 @@ struct Scene::Impl {
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
       if (pen_body) StepBody();
+      // Rolling: the creep's junction noise (kRollingCreep) on the surface at the contact, from
+      // the friction noise's process (SetSpatialSteps: renewed as the patch rolls its length).
+      if (gesture.style == ProbeStyle::kRoll && drive.slide_velocity_mps > 0.0 &&
+          config.friction.enabled && config.friction.sigma3 > 0.0 && probe.normal_n > 0.0) {
+        const double w = noise_junction_step > 0.0 ? noise_junction : noise_w;
+        const double force = config.friction.sigma3 * w *
+                             std::sqrt(kRollingCreep * drive.slide_velocity_mps * probe.normal_n);
+        modes.Kick(-force / fs);
+      }
       // A grain of a crumbling crust broke under the tip: its flake flies off, the crust takes
       // the reaction (down).
       if (crumble.enabled() && drive.slide_velocity_mps > 0.0) {

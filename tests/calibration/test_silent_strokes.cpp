@@ -26,20 +26,11 @@ using sas::synth::ProbeStyle;
 
 constexpr double kSilentDbfs = -90.0;
 
-// The strokes that are silent today, with their quietest 100 ms (dBFS): a ball rolled slowly
-// meets the relief's slopes too slowly to ring the modes, and rolling has no sliding friction
-// to make noise. Rolling noise from the contact itself is the change that empties this list; a
-// stroke that becomes audible must leave it, and one that becomes silent fails.
+// The strokes that are silent today: none. A slow roll over a smooth stretch rang nothing
+// (-92 to -101 dBFS) until the rolling contact's creep noise (synth/scene.cpp, kRollingCreep). A
+// stroke that becomes silent fails; one listed here must become audible to leave.
 const std::set<std::string>& KnownSilent() {
-  static const std::set<std::string> keys = {
-      "wooden_board/roll/10mm/s/p0.1",    // -101.2
-      "cracked_ground/roll/10mm/s/p0.1",  // -100.8
-      "bubble_wrap/roll/10mm/s/p0.9",     // -93.7
-      "cracked_ground/roll/10mm/s/p0.9",  // -95.9
-      // Within 1.5 dB of the line: -91.5 since the lift before it lasts longer (the scene's
-      // noise generator is at another draw when this stroke starts), above -90 before.
-      "wooden_board/roll/10mm/s/p0.9",  // -91.5
-  };
+  static const std::set<std::string> keys = {};
   return keys;
 }
 
@@ -76,6 +67,8 @@ double QuietestWindowDbfs(const std::vector<float>& out, std::size_t from, std::
 TEST_CASE("no stroke over a kiosk texture is silent while the pen moves, in any style",
           "[calibration]") {
   std::set<std::string> silent;
+  double quietest_stroke = 1e300;  // the margin over the line, for the record
+  std::string quietest_key;
   for (const char* texture : kKioskTextures) {
     sas::kiosk::KioskEngine engine(ShippedKiosk(texture));
     REQUIRE(engine.texture_failures().empty());
@@ -109,6 +102,10 @@ TEST_CASE("no stroke over a kiosk texture is silent while the pen moves, in any 
           const std::string key =
               std::string(texture) + "/" + std::string(sas::synth::ProbeStyleName(style)) + figures;
           INFO(key << ": quietest 100 ms " << quietest << " dBFS");
+          if (quietest < quietest_stroke) {
+            quietest_stroke = quietest;
+            quietest_key = key;
+          }
           if (quietest <= kSilentDbfs) {
             silent.insert(key);
             CHECK(KnownSilent().count(key) == 1);
@@ -117,6 +114,7 @@ TEST_CASE("no stroke over a kiosk texture is silent while the pen moves, in any 
       }
     }
   }
+  WARN("quietest stroke: " << quietest_key << ", " << quietest_stroke << " dBFS in 100 ms");
   for (const std::string& key : KnownSilent()) {
     INFO("listed as silent but heard: " << key);
     CHECK(silent.count(key) == 1);
