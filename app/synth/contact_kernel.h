@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "synth/contact.h"
 #include "synth/modal_resonator.h"
@@ -36,13 +37,14 @@ namespace sas::synth {
 // harder: its lightest, 0.2 N, is 0.1 N of friction load on a tilted rub).
 inline constexpr double kFullViscousLoadN = 0.1;
 
-// `friction`, or its copy in `light` with σ2 scaled for a friction load under kFullViscousLoadN.
+// `friction`, or its copy made in `light` with σ2 scaled for a friction load under
+// kFullViscousLoadN (only then is a copy made: the audio path's usual case costs nothing).
 inline const FrictionModel& ViscousAtLoad(const FrictionModel& friction, double friction_load_n,
-                                          FrictionModel& light) {
+                                          std::optional<FrictionModel>& light) {
   if (!(friction_load_n < kFullViscousLoadN) || !(friction.sigma2 > 0.0)) return friction;
-  light = friction;
-  light.sigma2 *= std::cbrt(std::pow(std::max(friction_load_n, 0.0) / kFullViscousLoadN, 2.0));
-  return light;
+  light.emplace(friction);
+  light->sigma2 *= std::cbrt(std::pow(std::max(friction_load_n, 0.0) / kFullViscousLoadN, 2.0));
+  return *light;
 }
 
 struct ContactKernelConfig {
@@ -218,7 +220,7 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
   const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
   const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) * rate;
   double surface = drive.surface_begin_m;
-  FrictionModel light_load;  // ViscousAtLoad's copy (out of the loop: one construction a sample)
+  std::optional<FrictionModel> light_load;  // ViscousAtLoad's copy, made only when it is needed
   for (int j = 0; j < n; ++j) {
     const double surface_next =
         j + 1 == n ? drive.surface_end_m

@@ -3,6 +3,7 @@
 // model's equations (Stribeck curve, break-away deflection), not taken from the engine.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "synth/contact.h"
@@ -298,7 +299,7 @@ TEST_CASE(
   params.viscous_friction = 1.0;
   FrictionModel model;
   model.Set(params);
-  FrictionModel light;
+  std::optional<FrictionModel> light;
   CHECK(&ViscousAtLoad(model, 0.5, light) == &model);  // a stroke's load: untouched
   CHECK(&ViscousAtLoad(model, kFullViscousLoadN, light) == &model);
   // Hertz: contact area as load^(2/3); an eighth of the load, a quarter of the area.
