@@ -161,6 +161,21 @@ auto Real(double KioskConfig::*member, double min, double max) {
   };
 }
 
+// As Real, and 0 is accepted too: it means "off", and the range holds for every other value.
+auto RealOrOff(double KioskConfig::*member, double min, double max) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    if (!node.is_number()) throw ConfigError(where + "expected a number");
+    const double value = *node.value<double>();
+    if (!std::isfinite(value)) throw ConfigError(where + "must be a finite number");
+    if (value != 0.0 && (value < min || value > max)) {
+      std::ostringstream message;
+      message << where << value << " is out of range [" << min << ", " << max << "] (or 0: off)";
+      throw ConfigError(message.str());
+    }
+    config.*member = value;
+  };
+}
+
 const std::vector<KeySpec>& Schema() {
   static const std::vector<KeySpec> schema = {
       {"audio", "output_device", Text(&KioskConfig::output_device)},
@@ -211,6 +226,11 @@ const std::vector<KeySpec>& Schema() {
       {"staff", "chord", Chord(&KioskConfig::staff_chord)},
       {"staff", "chord_hold_s", Real(&KioskConfig::staff_chord_hold_s, 0.0, 10.0)},
       {"staff", "panel_timeout_s", Real(&KioskConfig::staff_panel_timeout_s, 10.0, 86400.0)},
+      // The actuator's resonance: 0 (no compensation), else the range of the inertial actuators
+      // a stylus can carry (exciters from ~20 Hz, linear resonant actuators up to a few hundred).
+      {"transducer", "resonance_hz",
+       RealOrOff(&KioskConfig::transducer_resonance_hz, 20.0, 1000.0)},
+      {"transducer", "q", Real(&KioskConfig::transducer_q, 0.3, 50.0)},
   };
   return schema;
 }

@@ -79,6 +79,12 @@ struct KioskConfig {
   // The panel closes itself this long after the last staff action (chord or button), so one left
   // open does not hold off the idle reset.
   double staff_panel_timeout_s = 300.0;
+  // [transducer] — the actuator on the stylus, as a mass on a spring (synth/transducer_eq.h): its
+  // resonance and quality factor from the datasheet (Fs, Qms/Qts). The drive on ch 2 is then
+  // compensated so that the acceleration at the pen follows the designed signal. 0 Hz: a flat,
+  // broadband transducer, nothing compensated.
+  double transducer_resonance_hz = 0.0;
+  double transducer_q = 1.0;
 };
 
 // The largest configuration file read. The shipped kiosk.toml is a few kB with every key and

@@ -100,6 +100,8 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   setup.transducer_ceiling = std::pow(10.0, options_.config.haptic_ceiling_db / 20.0);
   setup.low_vibration_factor = std::pow(10.0, -options_.config.low_vibration_db / 20.0);
   setup.low_vibration = low_vibration_;
+  setup.transducer_resonance_hz = options_.config.transducer_resonance_hz;
+  setup.transducer_q = options_.config.transducer_q;
   // A restart comes up at the kept staff levels, not fading into them.
   setup.staff_sound_gain = StaffGain(staff_.volume_db);
   setup.staff_haptic_gain = StaffGain(staff_.vibration_db);

@@ -134,7 +134,7 @@ class KioskEngine final {
   // queued (player.h), a switch waits until the device runs again. Call after each
   // AudioOutput::Poll.
   void SetAudioRunning(bool running);
-  // Staff panel: a 1 kHz tone on the speaker (ch 1), a 40..800 Hz sweep on the transducer (ch 2).
+  // Staff panel: a 1 kHz tone on the speaker (ch 1), a 40..400 Hz sweep on the transducer (ch 2).
   void PlayTestTone();
   void PlayTransducerSweep();
   bool SaveCounters(std::string* error) const;

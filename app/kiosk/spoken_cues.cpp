@@ -145,7 +145,8 @@ void SpokenCues::LoadCues(double fs_hz, bool spoken_cues) {
   }
 
   // Staff test signals: 1 kHz at -12 dBFS on the speaker for 1 s; a 2 s exponential sweep
-  // 40 -> 800 Hz (the transducer band) at -6 dBFS on ch 2. 10 ms raised-cosine edges.
+  // 40 -> 400 Hz (the skin's band, which the vibration path uses) at -6 dBFS on ch 2. 10 ms
+  // raised-cosine edges.
   const auto edge = [&](std::size_t i, std::size_t n) {
     const double ramp = 0.01 * fs_hz;
     const double k =
@@ -169,7 +170,7 @@ void SpokenCues::LoadCues(double fs_hz, bool spoken_cues) {
   record_tone_clip_ = AddClip("record tone", tone(0.25, 880.0), 0);
   {
     const auto n = static_cast<std::size_t>(2.0 * fs_hz);
-    const double f0 = 40.0, f1 = 800.0, length_s = 2.0;
+    const double f0 = 40.0, f1 = 400.0, length_s = 2.0;
     const double k = std::log(f1 / f0);
     std::vector<float> sweep(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {

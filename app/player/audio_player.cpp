@@ -1,5 +1,6 @@
 // The player's audio-thread face (see player.h): message timing, scene rendering, the switch's
-// cross-fade, clip mixing, staff gains and the safety stage. No lock, allocation or I/O here.
+// cross-fade, clip mixing, staff gains, the transducer's compensation and the safety stage. No
+// lock, allocation or I/O here.
 #include <algorithm>
 #include <cmath>
 
@@ -19,6 +20,7 @@ AudioPlayer::AudioPlayer(PlayerShared& shared)
       // Where the ramps start: a restart comes up at the kept level, not fading into it.
       staff_sound_now_(shared.setup.staff_sound_gain),
       staff_haptic_now_(shared.setup.staff_haptic_gain) {
+  transducer_eq_.Prepare(fs_hz_, shared.setup.transducer_resonance_hz, shared.setup.transducer_q);
   safety_.Prepare(fs_hz_);
   safety_.SetCeilings(shared.setup.speaker_ceiling, shared.setup.transducer_ceiling);
 }
@@ -107,8 +109,9 @@ void AudioPlayer::RenderSegment(float* out, int channels, int begin, int end,
     }
   }
   MixClip(a, frames);
-  // Everything is mixed: the staff's volume and vibration, then the safety stage as the last step
-  // (its ceilings hold for every source and every staff setting).
+  // Everything is mixed: the staff's volume and vibration, the transducer's compensation on ch 2
+  // (scenes and clips alike reach the pen as designed), then the safety stage as the last step
+  // (its ceilings hold for every source, every staff setting and whatever the compensation adds).
   const float sound_target = shared_->staff_sound.load(std::memory_order_relaxed);
   const float haptic_target = shared_->staff_haptic.load(std::memory_order_relaxed);
   float sound_gain = staff_sound_now_, haptic_gain = staff_haptic_now_;
@@ -116,7 +119,7 @@ void AudioPlayer::RenderSegment(float* out, int channels, int begin, int end,
     sound_gain += (sound_target - sound_gain) * staff_smooth_;
     haptic_gain += (haptic_target - haptic_gain) * staff_smooth_;
     a[2 * i] *= sound_gain;
-    a[2 * i + 1] *= haptic_gain;
+    a[2 * i + 1] = static_cast<float>(transducer_eq_.Process(a[2 * i + 1] * haptic_gain));
     safety_.Process(a + 2 * static_cast<std::ptrdiff_t>(i));
     speaker_energy_ += static_cast<double>(a[2 * i]) * a[2 * i];
     float* frame = out + static_cast<std::ptrdiff_t>(begin + i) * channels;

@@ -10,7 +10,8 @@
 //   AudioPlayer (audio thread) is the queue's only consumer. Per block: pop the messages, place
 //   each on the frame that keeps a constant pen-to-sound delay of one buffer, run Scene::Process
 //   on the active scene (and the previous one while they cross-fade after a switch), mix the
-//   playing clip, apply the staff gains and the final SafetyStage, publish the measured latency.
+//   playing clip, apply the staff gains, the transducer's compensation (ch 2) and the final
+//   SafetyStage, publish the measured latency.
 // Player owns both faces and what they share (the scene pool, the clips, the queue, the atomics).
 //
 // Scenes live in kSceneSlots slots. A switch prepares a free slot on the control thread
@@ -34,6 +35,7 @@
 #include "synth/probe_command.h"
 #include "synth/safety_stage.h"
 #include "synth/scene.h"
+#include "synth/transducer_eq.h"
 
 namespace sas::player {
 
@@ -52,6 +54,10 @@ struct PlayerSetup {
   bool low_vibration = false;         // the mode at start
   float staff_sound_gain = 1.0f;      // the staff volume and vibration at start (linear)
   float staff_haptic_gain = 1.0f;
+  // The transducer's profile (synth/transducer_eq.h): ch 2 is compensated so that the pen's
+  // acceleration follows the mix. 0 Hz: a flat transducer, ch 2 passes unchanged.
+  double transducer_resonance_hz = 0.0;
+  double transducer_q = 1.0;
 };
 
 // A pre-loaded cue or test signal: mono at the output rate, played on one channel.
@@ -183,6 +189,9 @@ class AudioPlayer {
   std::int64_t virtual_now_ns_ = 0;
   std::vector<synth::ProbeCommand> block_commands_;
   std::vector<float> scratch_a_, scratch_b_;
+  // Ch 2 of the whole mix, after the staff gains: every source is compensated for the actuator,
+  // and the safety stage after it still bounds the (boosted) drive.
+  synth::TransducerEq transducer_eq_;
   // The last stage before the device: every source is mixed before it.
   synth::SafetyStage safety_;
   bool safety_low_vibration_ = false;  // the ceilings the stage has now

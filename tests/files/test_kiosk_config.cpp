@@ -93,6 +93,47 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.ambient_rate_db_per_s == defaults.ambient_rate_db_per_s);
   CHECK(shipped.staff_chord == defaults.staff_chord);
   CHECK(shipped.staff_chord_hold_s == defaults.staff_chord_hold_s);
+  CHECK(shipped.transducer_resonance_hz == defaults.transducer_resonance_hz);
+  CHECK(shipped.transducer_q == defaults.transducer_q);
+}
+
+TEST_CASE("the transducer profile: off by default, 0 or 20-1000 Hz, q 0.3-50", "[kiosk]") {
+  const KioskConfig defaults = ParseKioskConfig("", "empty.toml");
+  CHECK(defaults.transducer_resonance_hz == 0.0);  // a broadband transducer: nothing compensated
+  CHECK(defaults.transducer_q == 1.0);
+
+  const auto lra = ParseKioskConfig("[transducer]\nresonance_hz = 175\nq = 10.0\n", "k.toml");
+  CHECK(lra.transducer_resonance_hz == 175.0);
+  CHECK(lra.transducer_q == 10.0);
+  const auto low = ParseKioskConfig("[transducer]\nresonance_hz = 20.0\nq = 0.3\n", "k.toml");
+  CHECK(low.transducer_resonance_hz == 20.0);
+  CHECK(low.transducer_q == 0.3);
+  const auto high = ParseKioskConfig("[transducer]\nresonance_hz = 1000\nq = 50\n", "k.toml");
+  CHECK(high.transducer_resonance_hz == 1000.0);
+  CHECK(high.transducer_q == 50.0);
+  // 0 switches the compensation off again, whatever q says.
+  const auto off = ParseKioskConfig("[transducer]\nresonance_hz = 0\nq = 2\n", "k.toml");
+  CHECK(off.transducer_resonance_hz == 0.0);
+  CHECK(off.transducer_q == 2.0);
+
+  // Between 0 and the range is not "off": a typo (17 for 170) must not pass silently.
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nq = 2\nresonance_hz = 17\n", "k.toml"),
+                    Catch::Contains("k.toml:3: transducer.resonance_hz: 17 is out of range") &&
+                        Catch::Contains("(or 0: off)"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nresonance_hz = 1200\n", "k.toml"),
+                    Catch::Contains("k.toml:2") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nresonance_hz = -60\n", "k.toml"),
+                    Catch::Contains("transducer.resonance_hz") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nresonance_hz = \"175 Hz\"\n", "k.toml"),
+                    Catch::Contains("expected a number"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nresonance_hz = inf\n", "k.toml"),
+                    Catch::Contains("finite"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nq = 0\n", "k.toml"),
+                    Catch::Contains("k.toml:2: transducer.q: 0 is out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nq = 51\n", "k.toml"),
+                    Catch::Contains("transducer.q") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[transducer]\nqms = 2\n", "k.toml"),
+                    Catch::Contains("transducer.qms") && Catch::Contains("unknown key"));
 }
 
 TEST_CASE("vibration ceiling, low-vibration and ambient gain keys are validated", "[kiosk]") {

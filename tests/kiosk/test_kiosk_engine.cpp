@@ -467,3 +467,38 @@ TEST_CASE("engine: staff volume and vibration steps change the output and surviv
   CHECK(20.0 * std::log10(speaker / speaker_ref) == Approx(-6.0).margin(0.1));
   CHECK(20.0 * std::log10(transducer / transducer_ref) == Approx(-3.0).margin(0.1));
 }
+
+TEST_CASE(
+    "engine: the configured transducer profile reaches ch 2: an LRA's staff sweep is drawn down "
+    "at its resonance and driven harder below it",
+    "[kiosk]") {
+  auto options = Options();
+  options.texture_paths = {std::string(sas::kSourceDir) + "/textures/wooden_board/texture.toml"};
+  options.config.transducer_resonance_hz = 175.0;
+  options.config.transducer_q = 10.0;
+  KioskEngine engine(options);
+  engine.SetAudioRunning(true);
+  RenderBlocks(engine, 4);
+  engine.PlayTransducerSweep();
+  const auto out = RenderBlocks(engine, 760);  // 2.03 s
+  // The sweep runs 40 -> 400 Hz in 2 s, exponentially (f = 40 Hz * 10^(t / 2 s)), at -6 dBFS:
+  // uncompensated, an RMS of 0.5 / sqrt(2) anywhere in its middle.
+  const auto db_over_sweep = [&](double from_s, double to_s) {
+    double sum = 0.0;
+    const auto from = static_cast<std::size_t>(from_s * kFs);
+    const auto to = static_cast<std::size_t>(to_s * kFs);
+    for (std::size_t i = from; i < to; ++i) sum += double(out[2 * i + 1]) * out[2 * i + 1];
+    const double rms = std::sqrt(sum / static_cast<double>(to - from));
+    return 20.0 * std::log10(rms / (0.5 / std::sqrt(2.0)));
+  };
+  // 170-180 Hz: the compensation takes out the LRA's resonant gain, -17 to -20 dB there.
+  const double at_resonance_db = db_over_sweep(1.255, 1.30);
+  // 46-56 Hz: +20 dB asked for, up to the ceiling (0 dBFS against the sweep's -6 dBFS).
+  const double below_db = db_over_sweep(0.1, 0.3);
+  INFO("at the resonance " << at_resonance_db << " dB, below it " << below_db << " dB");
+  CHECK(at_resonance_db < -12.0);
+  CHECK(below_db > 3.0);
+  double peak = 0.0;
+  for (std::size_t i = 1; i < out.size(); i += 2) peak = std::max(peak, double(std::fabs(out[i])));
+  CHECK(peak <= 1.0);
+}
