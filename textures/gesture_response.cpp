@@ -30,12 +30,25 @@ const cv::Scalar kStyleColour[3] = {{40, 90, 220}, {60, 160, 40}, {200, 110, 30}
 constexpr int kPanelW = 440, kPanelH = 250, kLeft = 60, kRight = 14, kTop = 30, kBottom = 40;
 
 // One panel: y against speed (log axis), one line per style and pressure (firm solid, light thin).
+enum class Plotted { kSound, kSharpness, kVibration, kDetail };
+
 void Panel(cv::Mat& image, int x0, int y0, const std::string& title,
-           const std::vector<ResponseCell>& grid, bool sharpness) {
+           const std::vector<ResponseCell>& grid, Plotted what) {
   const cv::Rect area(x0 + kLeft, y0 + kTop, kPanelW - kLeft - kRight, kPanelH - kTop - kBottom);
   double lo = 1e300, hi = -1e300;
+  const bool sharpness = what == Plotted::kSharpness;
   const auto value = [&](const ResponseCell& c) {
-    return sharpness ? c.response.sharpness_acum : c.response.sound_db;
+    switch (what) {
+      case Plotted::kSharpness:
+        return c.response.sharpness_acum;
+      case Plotted::kVibration:
+        return c.response.haptic_db;
+      case Plotted::kDetail:
+        return c.response.haptic_detail_db;
+      case Plotted::kSound:
+        break;
+    }
+    return c.response.sound_db;
   };
   for (const auto& c : grid) {
     lo = std::min(lo, value(c));
@@ -98,7 +111,7 @@ void Panel(cv::Mat& image, int x0, int y0, const std::string& title,
 void WritePlot(const std::string& path, const std::vector<std::string>& names,
                const std::vector<std::vector<ResponseCell>>& grids) {
   const int legend = 40;
-  cv::Mat image(legend + kPanelH * static_cast<int>(names.size()), 2 * kPanelW, CV_8UC3,
+  cv::Mat image(legend + kPanelH * static_cast<int>(names.size()), 4 * kPanelW, CV_8UC3,
                 cv::Scalar(255, 255, 255));
   int x = 10;
   for (std::size_t s = 0; s < sas::kiosk::kResponseStyles.size(); ++s) {
@@ -111,8 +124,12 @@ void WritePlot(const std::string& path, const std::vector<std::string>& names,
               {0, 0, 0}, 1, cv::LINE_AA);
   for (std::size_t i = 0; i < names.size(); ++i) {
     const int y0 = legend + kPanelH * static_cast<int>(i);
-    Panel(image, 0, y0, names[i] + ": sound level, dB", grids[i], false);
-    Panel(image, kPanelW, y0, names[i] + ": sharpness, acum", grids[i], true);
+    Panel(image, 0, y0, names[i] + ": sound level, dB", grids[i], Plotted::kSound);
+    Panel(image, kPanelW, y0, names[i] + ": sharpness, acum", grids[i], Plotted::kSharpness);
+    Panel(image, 2 * kPanelW, y0, names[i] + ": vibration, dB (skin-weighted)", grids[i],
+          Plotted::kVibration);
+    Panel(image, 3 * kPanelW, y0, names[i] + ": vibration detail, dB", grids[i],
+          Plotted::kDetail);
   }
   if (!cv::imwrite(path, image)) throw std::runtime_error("cannot write " + path);
 }
@@ -182,11 +199,15 @@ int main(int argc, char** argv) {
        << places
        << " seeded places each, every figure the median over the places (calibration/"
           "gesture_response.h). Sound and vibration are RMS levels of the moving stroke in dB re "
-          "full scale; sharpness is DIN 45692's (acum, Zwicker loudness of ISO 532-1) with every "
+          "full scale, the vibration skin-weighted (calibration/felt.h: the hand's threshold "
+          "curve, Verrillo 1963); its detail is the range its 10 ms envelope spans (90th minus "
+          "10th percentile, dB: bumps, cracks and grain lines move it, a smooth slide or a "
+          "limiter's buzz does not); sharpness is DIN 45692's (acum, Zwicker loudness of ISO 532-1) with every "
           "stroke heard at "
        << sas::kiosk::kListeningDbSpl
        << " dB SPL, the level the kiosk plays a typical stroke at; the centroid is channel 1's "
-          "power-weighted mean frequency.\n\n![level and sharpness against speed]"
+          "power-weighted mean frequency.\n\n"
+          "![level, sharpness, vibration and its detail against speed]"
           "(gesture-response.png)\n\n";
     md << "## Relations\n\nWanted on every surface: speed 30 → 300 mm/s raises the sound by ≥ 6 "
           "dB, "
@@ -272,18 +293,19 @@ int main(int argc, char** argv) {
     md << "\n## The grid\n\n";
     for (std::size_t i = 0; i < names.size(); ++i) {
       md << "### " << names[i]
-         << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB "
-            "| sharpness, acum | centroid, Hz | relief alone, dB | relief alone's centroid, Hz "
-            "| flatness | crest, dB | onsets/s |\n"
-            "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         << "\n\n| style | speed, mm/s | pressure | sound, dB | vibration, dB (skin) "
+            "| vibration detail, dB | sharpness, acum | centroid, Hz | relief alone, dB "
+            "| relief alone's centroid, Hz | flatness | crest, dB | onsets/s |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
       for (const auto& c : grids[i]) {
         const bool relief_heard = c.response.relief_db >= sas::kiosk::kPrintFloorDb;
         std::snprintf(
             line, sizeof line,
-            "| %s | %.0f | %.1f | %.1f | %.1f | %.2f | %.0f | %s | %s | %.3f | %.1f | "
+            "| %s | %.0f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %s | %s | %.3f | %.1f | "
             "%.0f |\n",
             sas::synth::ProbeStyleName(c.stroke.style).data(), c.stroke.speed_mm_s,
-            c.stroke.pressure, c.response.sound_db, c.response.haptic_db, c.response.sharpness_acum,
+            c.stroke.pressure, c.response.sound_db, c.response.haptic_db,
+            c.response.haptic_detail_db, c.response.sharpness_acum,
             c.response.centroid_hz, sas::kiosk::LevelText(c.response.relief_db).c_str(),
             relief_heard ? std::to_string(std::lround(c.response.relief_centroid_hz)).c_str() : "-",
             c.response.flatness, c.response.crest_db, c.response.onsets_per_s);

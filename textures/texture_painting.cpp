@@ -131,6 +131,8 @@ struct TextureText {
   const char* probe_style;
   double sound_trim_db = 0.0;
   const char* sound_trim_why = "";
+  double haptic_trim_db = 0.0;
+  const char* haptic_trim_why = "";
 };
 
 // A length as the texture files write it: no trailing zeros, but at least one decimal ("4.0").
@@ -157,6 +159,10 @@ TextureOut Assemble(const TextureText& t, const cv::Mat1f& height_mm, cv::Mat pi
              "height_scale_mm = " + Mm(t.height_scale_mm) + "\n" +
              "relief_mm = " + Mm(t.relief_mm) + "\n";
   out.sound_trim_db = t.sound_trim_db;
+  out.haptic_trim_db = t.haptic_trim_db;
+  out.haptic_trim_why = std::string(t.haptic_trim_why) +
+                        "# The haptic trim does the same for the skin-weighted vibration "
+                        "(population_levels --strokes 1000\n# --seed 1).\n";
   // Why, then how the value was found (the same for every texture).
   out.sound_trim_why = std::string(t.sound_trim_why) +
                        "# The trim moves the texture after the per-stroke matching so that its "
@@ -267,7 +273,10 @@ TextureOut BubbleWrap(const Canvas& c) {
                    .probe_style = "rub",
                    .sound_trim_db = -0.9,
                    .sound_trim_why = "# Firm strokes pop bubbles, which the calibration grid "
-                                     "(below the pop force) never hears.\n"},
+                                     "(below the pop force) never hears.\n",
+                   .haptic_trim_db = -1.6,
+                   .haptic_trim_why = "# Felt, the visitors' firm strokes over whole bubbles and "
+                                      "pops came out 1.6 dB over the mean.\n"},
                   h, Render(h, albedo, look, rng), bubbles);
 }
 
@@ -389,7 +398,10 @@ TextureOut BrokenGlass(const Canvas& c) {
                    .sound_trim_why = "# The grid's strokes are not the visitors' (longer, lighter "
                                      "and firmer, slower and faster) and leave out the landing:\n"
                                      "# over the visitors' whole strokes its median came out "
-                                     "0.4 LU over the mean.\n"},
+                                     "0.4 LU over the mean.\n",
+                   .haptic_trim_db = -0.9,
+                   .haptic_trim_why = "# Felt, the cracks the visitors' strokes cross left them "
+                                      "0.9 dB over the mean.\n"},
                   h, Render(h, albedo, look, rng, &glint));
 }
 
@@ -477,7 +489,10 @@ TextureOut WoodenBoard(const Canvas& c) {
                    .sound_trim_db = -1.1,
                    .sound_trim_why = "# The grid's strokes leave out the landing, which rings the "
                                      "board's low modes:\n# over the visitors' whole strokes its "
-                                     "median came out 1.1 LU over the mean.\n"},
+                                     "median came out 1.1 LU over the mean.\n",
+                   .haptic_trim_db = -1.3,
+                   .haptic_trim_why = "# Felt, the board's low modes ringing under the grain "
+                                      "lines leave the visitors' strokes 1.3 dB over the mean.\n"},
                   h, Render(h, albedo, look, rng));
 }
 
@@ -570,7 +585,10 @@ TextureOut CrackedGround(const Canvas& c) {
        .sound_trim_why = "# The grid's strokes are not the visitors' (longer, lighter and "
                          "firmer, slower and faster) and leave out the landing, soft on the "
                          "crust:\n# over the visitors' whole strokes its median came out 1.4 LU "
-                         "under the mean.\n"},
+                         "under the mean.\n",
+       .haptic_trim_db = 3.9,
+       .haptic_trim_why = "# Felt, the crust's soft landings leave the visitors' strokes 3.9 dB "
+                          "under the mean.\n"},
       h, Render(h, albedo, look, rng));
 }
 

@@ -30,6 +30,8 @@ struct TextureOut {
   std::string toml_tail;  // ...and after it: the gains are calibrated once the files exist
   double sound_trim_db = 0.0;  // [gains] sound_trim_db (surface/texture_file.h), 0: not written
   std::string sound_trim_why;  // its comment line in texture.toml
+  double haptic_trim_db = 0.0;  // [gains] haptic_trim_db, the same for the transducer
+  std::string haptic_trim_why;
 };
 
 TextureOut BubbleWrap(const Canvas& c);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "calibration/character.h"
+#include "calibration/felt.h"
 #include "calibration/sharpness.h"
 #include "kiosk/gesture.h"
 #include "kiosk/kiosk_engine.h"
@@ -252,7 +253,9 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
     StrokeResponse one;
     Spectrum(span.sound, fs_hz, &one);
     one.sound_db = PowerDb(MeanSquare(span.sound));
-    one.haptic_db = PowerDb(MeanSquare(span.haptic));
+    const FeltFigures felt = MeasureFelt(span.haptic, fs_hz, 1.0);
+    one.haptic_db = felt.skin_db;
+    one.haptic_detail_db = felt.features[10];
     one.sharpness_acum = HeardSharpness(span.sound, fs_hz);
     one.flatness = SpectralFlatness(span.sound, fs_hz);
     one.crest_db = CrestFactorDb(span.sound);
@@ -272,6 +275,7 @@ StrokeResponse MeasureStroke(const ResponseSurface& surface, const HandStroke& s
   StrokeResponse m;
   m.sound_db = median([](const StrokeResponse& r) { return r.sound_db; });
   m.haptic_db = median([](const StrokeResponse& r) { return r.haptic_db; });
+  m.haptic_detail_db = median([](const StrokeResponse& r) { return r.haptic_detail_db; });
   m.centroid_hz = median([](const StrokeResponse& r) { return r.centroid_hz; });
   m.relief_db = median([](const StrokeResponse& r) { return r.relief_db; });
   m.relief_centroid_hz = median([](const StrokeResponse& r) { return r.relief_centroid_hz; });

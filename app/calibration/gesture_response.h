@@ -10,8 +10,8 @@
 // A stroke: the pen rests on the surface (landing at 5 mm/s, so no landing click), waits
 // kRestS for the contact to settle, then moves kPathMm along a straight line at constant speed
 // and is lifted. The same path at every speed: only the hand changes. The measured span is the
-// motion itself; its level is the RMS of channel 1 (sound) and channel 2 (haptic, 40–800 Hz) at
-// gain 0 dB, in dB re full scale (1 m/s pickup velocity); its spectrum is a Hann-windowed DFT.
+// motion itself; its level is the RMS of channel 1 (sound) and channel 2 (haptic, skin-weighted:
+// felt.h) at gain 0 dB, in dB re full scale (1 m/s pickup velocity); its spectrum is a Hann-windowed DFT.
 // Styles as visitors make them: scrape = upright pen (a 0.3 mm point), rub = tilted 40° (a 4 mm
 // wide probe, kiosk/gesture.h), roll = upright with the roll style (a ball following the relief).
 
@@ -51,7 +51,11 @@ inline constexpr int kThirdOctaveBands = 21;
 
 struct StrokeResponse {
   double sound_db = -300.0;   // RMS of channel 1 over the motion
-  double haptic_db = -300.0;  // RMS of channel 2 over the motion
+  // Channel 2 over the motion: its skin-weighted RMS (calibration/felt.h) and the texture's
+  // detail in it, the range its 10 ms envelope spans (90th minus 10th percentile, dB): bumps,
+  // cracks and grain lines move the envelope, a smooth slide or a limited buzz does not.
+  double haptic_db = -300.0;
+  double haptic_detail_db = 0.0;
   double centroid_hz = 0.0;   // power-weighted mean frequency of channel 1, 20 Hz .. 20 kHz
   // Channel 1's band levels (dB) relative to its total level: the spectrum's shape alone.
   std::array<double, kThirdOctaveBands> band_db{};

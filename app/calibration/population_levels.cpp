@@ -46,6 +46,7 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
   measurement.stroke_cap_lu = config.stroke_cap_lu;
   measurement.strokes_per_visit = kVisitStrokes;
   measurement.whole_strokes = true;
+  measurement.felt_figures = true;
   for (std::size_t o = 0; o < paths.size(); ++o) {
     if (o != t) measurement.other_textures.push_back(paths[o]);
   }
@@ -81,21 +82,81 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
   for (const auto& [style, v] : by_style) {
     row.per_style[style] = {Percentile(v.first, 0.5), Percentile(v.second, 0.5)};
   }
+  std::vector<double> near, crest, band, above;
+  for (const auto& l : levels) {
+    near.push_back(l.felt.near_ceiling);
+    crest.push_back(l.felt.crest_db);
+    band.push_back(l.felt.band_fraction);
+    above.push_back(l.felt.above_1k_db);
+    row.felt_features.push_back(l.felt.features);
+  }
+  row.felt_near_ceiling_median = Percentile(near, 0.5);
+  row.felt_crest_median = Percentile(crest, 0.5);
+  row.felt_band_fraction_median = Percentile(band, 0.5);
+  row.felt_above_1k_median = Percentile(above, 0.5);
+  // The loudest 5 % by skin-weighted level (at least one stroke).
+  std::vector<std::size_t> order(levels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return levels[a].haptic_rms_db > levels[b].haptic_rms_db;
+  });
+  const std::size_t loud = std::max<std::size_t>(1, (levels.size() + 19) / 20);
+  for (std::size_t k = 0; k < loud; ++k) {
+    row.felt_near_ceiling_loudest += levels[order[k]].felt.near_ceiling / static_cast<double>(loud);
+  }
   return row;
+}
+
+FeltClassification ClassifyByFeel(const std::vector<PopulationLevels>& train,
+                                  const std::vector<PopulationLevels>& test) {
+  std::vector<FeltFeatures> x;
+  std::vector<int> label;
+  for (std::size_t t = 0; t < train.size(); ++t) {
+    for (const auto& f : train[t].felt_features) {
+      x.push_back(f);
+      label.push_back(static_cast<int>(t));
+    }
+  }
+  NearestNeighbours classifier;
+  classifier.Fit(x, label);
+  NearestCentroid centroid;
+  centroid.Fit(x, label);
+  FeltClassification result;
+  result.confusion.assign(test.size(), std::vector<int>(test.size(), 0));
+  int right = 0, centroid_right = 0, all = 0;
+  for (std::size_t t = 0; t < test.size(); ++t) {
+    for (const auto& f : test[t].felt_features) {
+      const int p = classifier.Predict(f);
+      if (p >= 0 && static_cast<std::size_t>(p) < test.size()) {
+        ++result.confusion[t][static_cast<std::size_t>(p)];
+      }
+      right += p == static_cast<int>(t) ? 1 : 0;
+      centroid_right += centroid.Predict(f) == static_cast<int>(t) ? 1 : 0;
+      ++all;
+    }
+  }
+  result.accuracy = all > 0 ? static_cast<double>(right) / all : 0.0;
+  result.centroid_accuracy = all > 0 ? static_cast<double>(centroid_right) / all : 0.0;
+  return result;
 }
 
 std::string DescribeTargets(const PopulationTargets& targets, double haptic_ceiling_db) {
   const auto holds = [](bool ok) { return ok ? "holds" : "does not hold"; };
-  char text[512];
+  char text[1024];
   std::snprintf(text, sizeof text,
                 "median loudness within ±%.0f LU of the mean of the textures: %s; median "
-                "transducer level within ±%.1f dB: %s; no stroke's loudest 400 ms more than %.0f "
-                "LU over its texture's median: %s; every style's median transducer level within "
-                "%.0f dB of the "
-                "transducer ceiling (%.0f dBFS): %s",
+                "skin-weighted transducer level within ±%.1f dB: %s; no stroke's loudest 400 ms "
+                "more than %.0f LU over its texture's median: %s; every style's median transducer "
+                "level within %.0f dB of the transducer ceiling (%.0f dBFS): %s; the transducer "
+                "within 1 dB of its ceiling on at most %.0f %% of the median stroke's samples and "
+                "%.0f %% of the loudest 5 %%'s, median crest factor at least %.0f dB: %s; at "
+                "least %.0f %% of the median stroke's vibration energy within 40-400 Hz and its "
+                "energy above 1 kHz at least %.0f dB under the total: %s",
                 kSoundSpreadLu, holds(targets.sound), kHapticSpreadDb, holds(targets.haptic),
                 kLoudestOverMedianLu, holds(targets.loudest), kFeltBelowCeilingDb,
-                haptic_ceiling_db, holds(targets.felt));
+                haptic_ceiling_db, holds(targets.felt), 100.0 * kMedianNearCeiling,
+                100.0 * kLoudestNearCeiling, kMinCrestDb, holds(targets.detail),
+                100.0 * kMinSkinBandFraction, kMinAbove1kDb, holds(targets.band));
   return text;
 }
 
@@ -112,6 +173,11 @@ PopulationTargets CheckPopulationTargets(const std::vector<PopulationLevels>& te
     targets.haptic =
         targets.haptic && std::fabs(r.haptic_median - targets.mean_haptic) <= kHapticSpreadDb;
     targets.loudest = targets.loudest && r.momentary_max - r.sound_median <= kLoudestOverMedianLu;
+    targets.detail = targets.detail && r.felt_near_ceiling_median <= kMedianNearCeiling &&
+                     r.felt_near_ceiling_loudest <= kLoudestNearCeiling &&
+                     r.felt_crest_median >= kMinCrestDb;
+    targets.band = targets.band && r.felt_band_fraction_median >= kMinSkinBandFraction &&
+                   r.felt_above_1k_median <= -kMinAbove1kDb;
     for (const char* style : {"scrape", "rub", "roll"}) {
       const auto it = r.per_style.find(style);
       // A style the population does not play cannot be felt: it misses the target.

@@ -13,6 +13,14 @@
 // pen's landing is part of its stroke, and the loudest moment of a visit can be one.
 //   felt     every style's (scrape, rub, roll) median transducer level within kFeltBelowCeilingDb
 //            of the transducer's ceiling
+//   detail   the transducer's detail is not clipped away (felt.h's figures of channel 2): the
+//            median stroke has at most kMedianNearCeiling of its samples within 1 dB of the
+//            ceiling, the loudest 5 % of strokes (by skin-weighted level) at most
+//            kLoudestNearCeiling on average, and the median crest factor is at least kMinCrestDb
+//   band     the median stroke has at least kMinSkinBandFraction of its vibration energy within
+//            40-400 Hz (the skin's band) and its energy above 1 kHz at least kMinAbove1kDb under
+//            the total
+// Transducer levels are skin-weighted (felt.h).
 
 #include <map>
 #include <string>
@@ -27,7 +35,16 @@ namespace sas::kiosk {
 inline constexpr double kSoundSpreadLu = 1.0;
 inline constexpr double kHapticSpreadDb = 1.5;
 inline constexpr double kLoudestOverMedianLu = 10.0;
-inline constexpr double kFeltBelowCeilingDb = 15.0;
+// The vibration lives well under the ceiling, so that the texture's detail keeps its envelope
+// (detail, below); 24 dB under it is still strongly felt: a transducer that reaches only 1 g at
+// its ceiling gives such a stroke ~0.6 m/s² RMS, ~28 dB over the Pacinian threshold (~0.1 µm at
+// 250 Hz, 0.025 m/s²: Verrillo 1963).
+inline constexpr double kFeltBelowCeilingDb = 24.0;
+inline constexpr double kMedianNearCeiling = 0.01;
+inline constexpr double kLoudestNearCeiling = 0.05;
+inline constexpr double kMinCrestDb = 10.0;
+inline constexpr double kMinSkinBandFraction = 0.7;
+inline constexpr double kMinAbove1kDb = 30.0;
 
 // One texture's figures over the population: medians and spreads of the stroke levels, and the
 // medians per style (sound LUFS, transducer dB).
@@ -42,6 +59,11 @@ struct PopulationLevels {
   double momentary_max = 0.0;
   std::string loudest_moment_stroke;
   std::map<std::string, std::pair<double, double>> per_style;
+  // Channel 2 over the strokes (felt.h): medians of the per-stroke figures, the loudest 5 %'s mean
+  // fraction of samples near the ceiling, and every stroke's classifier features in order.
+  double felt_near_ceiling_median = 0.0, felt_near_ceiling_loudest = 0.0;
+  double felt_crest_median = 0.0, felt_band_fraction_median = 0.0, felt_above_1k_median = 0.0;
+  std::vector<FeltFeatures> felt_features;
 };
 
 // The kiosk textures' files under `textures` (one folder per kiosk texture), in the kiosk's order.
@@ -55,11 +77,23 @@ PopulationLevels MeasurePopulation(const std::vector<std::string>& paths, std::s
 
 struct PopulationTargets {
   double mean_sound = 0.0, mean_haptic = 0.0;  // the means of the textures' medians
-  bool sound = true, haptic = true, loudest = true, felt = true;
-  bool all() const { return sound && haptic && loudest && felt; }
+  bool sound = true, haptic = true, loudest = true, felt = true, detail = true, band = true;
+  bool all() const { return sound && haptic && loudest && felt && detail && band; }
 };
 PopulationTargets CheckPopulationTargets(const std::vector<PopulationLevels>& textures,
                                          double haptic_ceiling_db);
+// The textures told apart by their vibration alone: a NearestNeighbours (felt.h) fitted on the
+// `train` population's strokes, labelled by texture (the rows' order), predicts the texture of
+// each of the `test` population's strokes. confusion[true][predicted] counts strokes.
+struct FeltClassification {
+  double accuracy = 0.0;             // NearestNeighbours (k 5)
+  double centroid_accuracy = 0.0;    // NearestCentroid, for comparison
+  std::vector<std::vector<int>> confusion;  // NearestNeighbours'
+};
+inline constexpr double kMinFeltAccuracy = 0.9;
+FeltClassification ClassifyByFeel(const std::vector<PopulationLevels>& train,
+                                  const std::vector<PopulationLevels>& test);
+
 // The four targets in words, each with "holds" or "does not hold", joined by "; ": the one
 // sentence the document and the headless visit both print.
 std::string DescribeTargets(const PopulationTargets& targets, double haptic_ceiling_db);

@@ -216,8 +216,9 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
   options.config.sound_gain_db = measurement.global_sound_gain_db + gains.sound_gain_db +
                                  gains.sound_trim_db - file.gains.sound_gain_db -
                                  file.gains.sound_trim_db;
-  options.config.haptic_gain_db =
-      measurement.global_haptic_gain_db + gains.haptic_gain_db - file.gains.haptic_gain_db;
+  options.config.haptic_gain_db = measurement.global_haptic_gain_db + gains.haptic_gain_db +
+                                  gains.haptic_trim_db - file.gains.haptic_gain_db -
+                                  file.gains.haptic_trim_db;
   options.config.stroke_cap_lu = measurement.stroke_cap_lu;
   if (measurement.strokes_per_visit > 0) options.config.idle_timeout_s = kVisitIdleTimeoutS;
   KioskEngine engine(options);
@@ -259,6 +260,9 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
 
   const std::span<const float> all(visit.output());
   const std::vector<double> loudness = surface::KWeightedLoudnessDb(all, fs, all_windows, 2);
+  // Channel 2 skin-weighted once, from the visit's start (no filter start-up inside a stroke).
+  const std::vector<float> skin = SkinWeighted(all.subspan(1), fs, 2);
+  const double ceiling = std::pow(10.0, options.config.haptic_ceiling_db / 20.0);
   std::vector<StrokeLevels> result;
   for (std::size_t w = 0; w < windows.size(); ++w) {
     const auto [from, to] = windows[w];
@@ -268,7 +272,12 @@ std::vector<StrokeLevels> MeasureStrokeLevels(const std::string& texture_toml,
     for (std::size_t m = momentary_range[w].first; m < momentary_range[w].second; ++m) {
       levels.sound_momentary_max_lufs = std::max(levels.sound_momentary_max_lufs, loudness[m]);
     }
-    levels.haptic_rms_db = surface::RmsDb(all.subspan(1), from, to, 2);
+    levels.haptic_rms_db = surface::RmsDb(skin, from, to, 1);
+    if (measurement.felt_figures) {
+      std::vector<float> ch2;
+      for (std::size_t i = from; i < to && 2 * i + 1 < all.size(); ++i) ch2.push_back(all[2 * i + 1]);
+      levels.felt = MeasureFelt(ch2, fs, ceiling);
+    }
     for (std::size_t i = from; i < to && 2 * i + 1 < all.size(); ++i) {
       levels.sound_peak = std::max(levels.sound_peak, static_cast<double>(std::fabs(all[2 * i])));
       levels.haptic_peak =

@@ -15,7 +15,8 @@
 // pen-down span from kSettleS after touch-down (the sustained stroke, without the landing click;
 // shifted by the engine's one-buffer pen-to-sound delay):
 //   sound   channel 1, BS.1770 K-weighted loudness (LUFS, ungated) — surface/loudness.h says why
-//   haptic  channel 2, RMS in dBFS — the output stage has already band-limited it to 40–800 Hz
+//   haptic  channel 2, skin-weighted RMS in dB re full scale (felt.h: the hand's threshold curve,
+//           as the K-weighting is the ear's); the output stage has band-limited it to 40–400 Hz
 //
 // Calibration, per texture on its own (regenerating one texture must not depend on the others):
 // the calibration strokes are a grid (CalibrationGrid: style scrape | rub x probe width x pen
@@ -47,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration/felt.h"
 #include "kiosk/virtual_visit.h"
 #include "levels/output_gains.h"
 #include "surface/texture_file.h"
@@ -62,6 +64,8 @@ struct StrokeLevels {
   // windows every 100 ms) over the measured span; a span shorter than 400 ms is one window from
   // its start.
   double sound_momentary_max_lufs = 0.0;
+  // Channel 2's figures (felt.h), when LevelMeasurement::felt_figures asks for them.
+  FeltFigures felt;
 };
 inline constexpr double kMomentaryWindowS = 0.4;
 // How long after its lift a whole stroke is measured (LevelMeasurement::whole_strokes): the pause
@@ -160,6 +164,8 @@ struct LevelMeasurement {
   // (the lift and the ring it leaves), instead of the sustained span from kSettleS after
   // touch-down to the lift that the calibration matches.
   bool whole_strokes = false;
+  // Also measure each stroke's vibration figures (StrokeLevels::felt; a periodogram per stroke).
+  bool felt_figures = false;
 };
 
 // The population's visits (VisitorPopulation played through MeasureStrokeLevels): a visitor's
@@ -183,7 +189,7 @@ inline constexpr double kVisitIdleTimeoutS = 1.0;
 // by a dB or less: population_levels), strong ones in the limiter's shoulder (the skin needs a
 // strong, steady signal; clipping is felt, not heard).
 inline constexpr double kTargetSoundLufs = kCalibratedSoundLufs;
-inline constexpr double kTargetHapticRmsDb = -42.0;
+inline constexpr double kTargetHapticRmsDb = -60.0;
 // Largest haptic gain the calibration gives a texture (see above).
 inline constexpr double kMaxHapticGainDb = 60.0;
 

@@ -41,7 +41,7 @@ struct KioskConfig {
   std::string pen_seat = "seat0";
   // [gains] — deliberately high for a loud room; the output limiters keep samples in [-1, 1].
   double sound_gain_db = 12.0;
-  double haptic_gain_db = 33.0;
+  double haptic_gain_db = 39.0;
   // Final safety stage (synth/safety_stage.h): true-peak ceilings of what reaches the devices.
   double sound_ceiling_db = -1.0;  // speaker ceiling, dBTP (<= 0)
   double haptic_ceiling_db = 0.0;  // transducer peak ceiling, dBFS (<= 0): the haptic limiter's top

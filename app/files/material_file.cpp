@@ -148,6 +148,7 @@ const std::vector<KeySpec<synth::FrictionParams>>& FrictionKeys() {
       {"mu_d", Real(&F::dynamic_coefficient, 0.0, 2.0)},
       {"stribeck_velocity_mps", Real(&F::stribeck_velocity_mps, 1e-4, 10.0)},
       {"breakaway_ratio", Real(&F::breakaway_ratio, 0.01, 0.99)},
+      {"felt_noise_share", Real(&F::felt_noise_share, 0.0, 1.0), true},
       // Optional: only the benchmark's comparison sets "explicit_euler" (it chatters).
       {"bristle_update", Bristle(), true},
   };

@@ -21,7 +21,7 @@ synth::OutputParams KioskOutputParams(const KioskConfig& config,
   synth::OutputParams p;
   p.sound_gain = FromDb(config.sound_gain_db + texture.sound_gain_db + texture.sound_trim_db +
                         ambient_gain_db);
-  p.haptic_gain = FromDb(config.haptic_gain_db + texture.haptic_gain_db);
+  p.haptic_gain = FromDb(config.haptic_gain_db + texture.haptic_gain_db + texture.haptic_trim_db);
   p.haptic_ceiling = FromDb(config.haptic_ceiling_db);
   p.low_vibration_gain = FromDb(-config.low_vibration_db);
   p.low_vibration = low_vibration;

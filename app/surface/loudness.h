@@ -10,9 +10,8 @@
 //                        is far simpler than a full ISO 532 loudness model. Measured with
 //                        libebur128, which designs the filters for any sample rate (at 48 kHz
 //                        they equal BS.1770's coefficient table).
-//   RmsDb                plain RMS in dB re full scale (for the transducer channel, already
-//                        band-limited to 40–800 Hz by the output stage: a vibration's strength is
-//                        its acceleration amplitude in that band, with no ear to weight it).
+//   RmsDb                plain RMS in dB re full scale (the transducer channel's levels are the
+//                        RMS of its skin-weighted signal: calibration/felt.h).
 // Both measure [from, to) of the signal but run the filter from sample 0, so the window starts
 // with settled filter state. Silence gives kSilenceDb. The loudness window is whole milliseconds
 // long (libebur128's unit): it ends at `to` and starts within half a millisecond of `from`, a

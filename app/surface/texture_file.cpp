@@ -191,9 +191,10 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
   t.relief_mm = check.Number(root, top, "", "relief_mm", 0.0, 10.0);
 
   const toml::table& gains = check.Table(root, top, "gains");
-  check.OnlyKeys(gains, "gains.", {"sound_gain_db", "haptic_gain_db", "sound_trim_db"});
+  check.OnlyKeys(gains, "gains.",
+                 {"sound_gain_db", "haptic_gain_db", "sound_trim_db", "haptic_trim_db"});
   // Wide upper bound: the calibrated gains (calibration/texture_levels.h) bring a material whose
-  // modes lie far above the transducer's 40–800 Hz band (glass) up to the others' vibration
+  // modes lie far above the transducer's 40–400 Hz band (glass) up to the others' vibration
   // strength.
   t.gains.sound_gain_db =
       check.Number(gains, gains.source(), "gains.", "sound_gain_db", -60.0, 80.0);
@@ -202,6 +203,10 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
   if (gains.contains("sound_trim_db")) {
     t.gains.sound_trim_db =
         check.Number(gains, gains.source(), "gains.", "sound_trim_db", -12.0, 12.0);
+  }
+  if (gains.contains("haptic_trim_db")) {
+    t.gains.haptic_trim_db =
+        check.Number(gains, gains.source(), "gains.", "haptic_trim_db", -12.0, 12.0);
   }
 
   if (const toml::node* node = root.get("levels")) {

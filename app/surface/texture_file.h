@@ -41,6 +41,8 @@ struct TextureGains {
   // change of sound_gain_db: for what the calibration grid leaves out (bubble wrap's pops), so the
   // texture's median visitor stroke still matches the others'. Optional in the file, 0 dB.
   double sound_trim_db = 0.0;
+  // The same for the transducer (the vibration's matching, skin-weighted). Optional, 0 dB.
+  double haptic_trim_db = 0.0;
 };
 
 // The texture's loudness (ch 1, LUFS) and vibration strength (ch 2, dB RMS) at its [gains] over a

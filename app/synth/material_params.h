@@ -72,6 +72,11 @@ struct FrictionParams {
   double dynamic_coefficient = 0.2;    // μ_d
   double stribeck_velocity_mps = 0.1;  // v_s
   double breakaway_ratio = 0.1;        // c_ba, 0 < c_ba < 1
+  // The share of σ3 w that the transducer carries (the sound always gets all of it). The felt
+  // channel is designed for the skin: the friction noise that gives every slide its hiss is alike
+  // on every material and, felt whole, it hides the relief, the cracks and the bubbles that tell
+  // the textures apart; a material whose grit is its feel (dry soil) keeps it.
+  double felt_noise_share = 1.0;
   BristleUpdate bristle_update = BristleUpdate::kExponential;
 };
 
@@ -92,7 +97,7 @@ struct OutputParams {
   double haptic_gain = 1.0;
   bool haptic_enabled = true;   // false when no transducer is configured: the path is skipped
   double haptic_low_hz = 40.0;  // transducer band
-  double haptic_high_hz = 800.0;
+  double haptic_high_hz = 400.0;
   // Peak ceiling of the transducer channel (linear, (0, 1]): the haptic limiter saturates here
   // instead of at full scale, so no gain can drive the transducer harder (sensitive visitors).
   double haptic_ceiling = 1.0;

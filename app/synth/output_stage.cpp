@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace sas::synth {
 namespace {
@@ -71,7 +72,6 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
   haptic_gain_ = finite_or(params.haptic_gain, 0.0);
   haptic_enabled_ = params.haptic_enabled;
   haptic_ceiling_ = std::clamp(finite_or(params.haptic_ceiling, 1.0), 1e-6, 1.0);
-  haptic_drive_ = haptic_gain_ / haptic_ceiling_;
   low_vibration_gain_ = std::clamp(finite_or(params.low_vibration_gain, 1.0), 0.0, 1.0);
   ramp_samples_ = std::max(1.0, kLowVibrationRampS * sample_rate_hz);
   low_vibration_ = params.low_vibration;
@@ -87,7 +87,12 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
                           sample_rate_hz);
   const double nyquist_guard = 0.45 * sample_rate_hz;
   const double low = std::clamp(finite_or(params.haptic_low_hz, 40.0), 1.0, nyquist_guard);
-  const double high = std::clamp(finite_or(params.haptic_high_hz, 800.0), low, nyquist_guard);
+  const double high = std::clamp(finite_or(params.haptic_high_hz, 400.0), low, nyquist_guard);
+  // 4th-order Butterworth before the limiter: Q = 1 / (2 cos(π/8)), 1 / (2 cos(3π/8)).
+  pre_[0] = HighPass(low, 1.0 / (2.0 * std::cos(std::numbers::pi / 8.0)), sample_rate_hz);
+  pre_[1] = HighPass(low, 1.0 / (2.0 * std::cos(3.0 * std::numbers::pi / 8.0)), sample_rate_hz);
+  pre_[2] = LowPass(high, 1.0 / (2.0 * std::cos(std::numbers::pi / 8.0)), sample_rate_hz);
+  pre_[3] = LowPass(high, 1.0 / (2.0 * std::cos(3.0 * std::numbers::pi / 8.0)), sample_rate_hz);
   sections_[0] = HighPass(low, std::numbers::sqrt2 / 2.0, sample_rate_hz);
   // 16th-order Butterworth: Q_k = 1 / (2 cos((2k - 1) π / 32)), k = 1..8. Steep enough that the
   // transducer gets (almost) nothing above 1 kHz even from a flat spectrum.
@@ -95,10 +100,25 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
     const double q = 1.0 / (2.0 * std::cos((2.0 * k - 1.0) * std::numbers::pi / 32.0));
     sections_[static_cast<std::size_t>(k)] = LowPass(high, q, sample_rate_hz);
   }
+  // The band limit's L1 norm: its impulse response summed over a few seconds (by then it has
+  // decayed far under 1e-12 of its peak).
+  {
+    auto sections = sections_;
+    double sum = 0.0;
+    const auto n = static_cast<long>(std::max(1.0, 2.0 * sample_rate_hz));
+    for (long i = 0; i < n; ++i) {
+      double v = i == 0 ? 1.0 : 0.0;
+      for (auto& s : sections) v = s.Process(v);
+      sum += std::fabs(v);
+    }
+    band_limit_gain_ = std::isfinite(sum) && sum > 1.0 ? sum : 1.0;
+  }
+  haptic_drive_ = haptic_gain_ / haptic_ceiling_;
   Reset();
 }
 
 void OutputStage::Reset() {
+  for (auto& s : pre_) s.s1 = s.s2 = 0.0;
   for (auto& s : sections_) s.s1 = s.s2 = 0.0;
   // Silent after a reset, so the trim and the stroke gains may jump to where they are asked to be.
   trim_ = trim_target_ = (low_vibration_ ? low_vibration_gain_ : 1.0) * stroke_haptic_;
@@ -231,21 +251,19 @@ int OutputStage::ProcessRun(const double* pickup, const double* felt, float* out
       }
     }
     sound[i] = heard[i] = sound_gain_ * stroke_sound_ * p;
-    y[i] = p + f;
+    y[i] = f;
   }
-  // The filters, with their state in registers: the K-weighting beside the first 4 band-pass
-  // sections (6 independent chains in one loop), then the other 5; the most that fit the 16 SSE
-  // registers beside the working values (all 9 at once spill; 3 + 3 + 3 measured slower).
-  static_assert(kSections == 9);
+  // The filters, with their state in registers: the K-weighting beside the haptic channel's
+  // pre-limiter band (6 independent chains in one loop).
+  static_assert(kPreSections == 4 && kSections == 9);
   const bool levelled = sound_leveller_.cap_square > 0.0;
   if (levelled && haptic_enabled_) {
-    CascadePair<2, 4>(sound_leveller_.weighting.data(), heard, &sections_[0], y, n);
+    CascadePair<2, 4>(sound_leveller_.weighting.data(), heard, pre_.data(), y, n);
   } else if (levelled) {
     Cascade<2>(sound_leveller_.weighting.data(), heard, n);
   } else if (haptic_enabled_) {
-    Cascade<4>(&sections_[0], y, n);
+    Cascade<4>(pre_.data(), y, n);
   }
-  if (haptic_enabled_) Cascade<5>(&sections_[4], y, n);
   // The sound channel; the limiter in a loop of its own (measured faster).
   if (levelled) {
     for (int i = 0; i < n; ++i) sound[i] = sound_leveller_.ApplyHeard(sound[i], heard[i]);
@@ -255,27 +273,39 @@ int OutputStage::ProcessRun(const double* pickup, const double* felt, float* out
     for (int i = 0; i < n; ++i) out[2 * i + 1] = 0.0f;
     return n;
   }
-  for (int i = 0; i < n; ++i) {
-    double v = y[i];
-    const bool guard = !std::isfinite(v);
-    if (guard) {
-      // Process's guard at frame i: the stage is reset after this frame's sound, so the frames
-      // after it (both channels, already run from the old state) are run again.
-      Reset();
-      v = 0.0;
-    }
+  // Process's order: the trim, the limiter, then the band limit. A non-finite value out of the
+  // high-pass (frame m) or the band limit (frame j) resets the stage after that frame's sound, as
+  // Process does, and the frames after it (both channels, run from the old state) are run again.
+  int m = 0;
+  for (; m < n; ++m) {
+    if (!std::isfinite(y[m])) break;
     if (trim_ != trim_target_) {
       trim_ += trim_step_;
       if ((trim_step_ > 0.0) == (trim_ >= trim_target_)) trim_ = trim_target_;
     }
-    out[2 * i + 1] = static_cast<float>(haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * v));
-    if (guard) return i + 1;
+    y[m] = haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y[m]);
+  }
+  Cascade<4>(&sections_[0], y, m);
+  Cascade<5>(&sections_[4], y, m);
+  for (int i = 0; i < m; ++i) {
+    if (!std::isfinite(y[i])) {
+      Reset();
+      out[2 * i + 1] = 0.0f;
+      return i + 1;
+    }
+    out[2 * i + 1] = static_cast<float>(y[i]);
+  }
+  if (m < n) {
+    Reset();
+    out[2 * m + 1] = 0.0f;
+    return m + 1;
   }
   return n;
 }
 
 double OutputStage::FilterActivity() const {
   double m = 0.0;
+  for (const auto& s : pre_) m = std::max({m, std::fabs(s.s1), std::fabs(s.s2)});
   for (const auto& s : sections_) m = std::max({m, std::fabs(s.s1), std::fabs(s.s2)});
   return m;
 }

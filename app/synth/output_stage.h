@@ -3,12 +3,25 @@
 // transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
 // the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
 //   ch 1: NaN/Inf -> 0, × sound_gain × stroke sound gain, soft limiter
-//   ch 2: NaN/Inf -> 0, band-pass [low, high] (2nd-order Butterworth high-pass + 16th-order
-//         Butterworth low-pass, RBJ biquads: white noise keeps < -40 dB of its energy above 1 kHz),
-//         × haptic_gain × low-vibration trim × stroke haptic gain, soft limiter scaled to the
-//         haptic ceiling
-//         (c · SoftLimit(x / c): linear up to kKnee · c, never reaching c); skipped (zeros) when
-//         haptic_enabled is false.
+//   ch 2: NaN/Inf -> 0, 4th-order Butterworth high-pass at `low` (the contact force's slow part,
+//         the relief's shape under the hand, is not vibration) and low-pass at `high` (so that the
+//         limiter judges the peaks the transducer gets: a crack's or a landing's force is a sharp
+//         pulse whose broadband peak is many times its peak in the band, and a limiter fed
+//         the whole pulse squeezed strokes whose output stayed 19 dB under the ceiling),
+//         × haptic_gain × low-vibration trim
+//         × stroke haptic gain, soft limiter scaled to the haptic ceiling (c · SoftLimit(x / c):
+//         linear up to kKnee · c, never reaching c), then the final band limit: 2nd-order
+//         Butterworth high-pass at `low` and 16th-order Butterworth low-pass at `high` (RBJ
+//         biquads), so the limiter's own products (its harmonics, and the slow swing it leaves
+//         when it squeezes one-sided pulses) never reach the transducer: the skin's band,
+//         40-400 Hz (its threshold rises steeply above ~400 Hz, Verrillo 1963). Skipped (zeros)
+//         when haptic_enabled is false.
+//         The band limit may lift a limited peak over c, by at most the sum of its impulse
+//         response's magnitudes (BandLimitGain(), 2.2 at 48 kHz; square waves at 50-300 Hz come
+//         out at 1.3-1.9): the kiosk's gains keep strokes well under the ceiling, and the final
+//         safety stage (a smooth look-ahead gain, no waveshaping) holds the ceiling for every
+//         source. Scaling the limiter down by that bound instead cost broken glass, whose felt
+//         cracks are its peaks, 5 dB of its level (measured over the visitor population).
 // Stroke leveller (sound_level_cap > 0): the running mean square of the gained sound, K-weighted
 // (BS.1770, as the textures' loudness is measured) (one-pole,
 // kLevellerWindowS, about a syllable: short enough to catch one loud stroke, long enough to leave
@@ -179,17 +192,24 @@ class OutputStage {
       *haptic = 0.0f;
       return;
     }
-    double y = pickup + felt;
-    for (auto& section : sections_) y = section.Process(y);
-    if (!std::isfinite(y)) {  // cannot happen for finite input, but never let NaN reach a device
+    double y = felt;
+    for (auto& section : pre_) y = section.Process(y);
+    if (!std::isfinite(y)) {  // as below: never let a poisoned filter state stay
       Reset();
-      y = 0.0;
+      *haptic = 0.0f;
+      return;
     }
     if (trim_ != trim_target_) {
       trim_ += trim_step_;
       if ((trim_step_ > 0.0) == (trim_ >= trim_target_)) trim_ = trim_target_;
     }
-    *haptic = static_cast<float>(haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y));
+    y = haptic_ceiling_ * SoftLimit(haptic_drive_ * trim_ * y);
+    for (auto& section : sections_) y = section.Process(y);
+    if (!std::isfinite(y)) {  // cannot happen for finite input, but never let NaN reach a device
+      Reset();
+      y = 0.0;
+    }
+    *haptic = static_cast<float>(y);
   }
 
   // `n` frames at once, interleaved into `out` (sound, haptic): the same arithmetic in the same
@@ -218,16 +238,24 @@ class OutputStage {
     return std::max({1.0, stroke_sound_, stroke_sound_target_, trim_, trim_target_});
   }
 
+  // The most the band limit after the limiter can lift a peak (the L1 norm of its impulse
+  // response): the transducer's output never exceeds haptic_ceiling × this.
+  double BandLimitGain() const { return band_limit_gain_; }
+
   // Largest magnitude held in the filter state (for idle detection).
   double FilterActivity() const;
 
  private:
-  static constexpr int kSections = 9;  // 1 high-pass + 8 low-pass biquads
+  // Before the limiter: 2 high-pass + 2 low-pass biquads; after it: 1 high-pass + 8 low-pass.
+  static constexpr int kPreSections = 4;
+  static constexpr int kSections = 9;
+  std::array<Biquad, kPreSections> pre_{};
   std::array<Biquad, kSections> sections_{};
   double sound_gain_ = 1.0;
   double haptic_gain_ = 1.0;
   double haptic_ceiling_ = 1.0;
   double haptic_drive_ = 1.0;  // haptic_gain_ / haptic_ceiling_
+  double band_limit_gain_ = 1.0;  // the L1 norm of the post-limiter sections' impulse response
   double low_vibration_gain_ = 0.25;
   double ramp_samples_ = 960.0;
   bool low_vibration_ = false;

@@ -125,6 +125,7 @@ struct Scene::Impl {
   double release_gain = 0.0;  // output_gain · Σ |g_i| / (m_i ω0_i): pickup per newton released
   double max_abs_gain = 0.0;  // output_gain · max |g_i|
   double felt_per_newton = 0.0;  // contact force -> transducer input (RenderFrame)
+  double felt_noise_share = 1.0;  // FrictionParams::felt_noise_share
   // The pen's body (ProbeParams::body_mass_kg > 0, impact on): a second mass above the nib (the
   // probe), joined by the pressure sensor's spring; the hand's push acts on the body. Heights as
   // the probe's; at rest without load the body sits at the nib's height.
@@ -161,6 +162,9 @@ struct Scene::Impl {
   double noise_keep = 0.0, noise_in = 1.0;
   double rough_raw = 0.0, rough_c1 = 0.0, rough_felt = 0.0, noise_w = 0.0;
   double noise_junction_step = 0.0, noise_junction = 0.0;
+  // N added to the contact force on the transducer this sample: the friction noise it does not
+  // carry (negative), a roll's creep noise it does (felt_noise_share of each).
+  double felt_adjust_n = 0.0;
   // Frames rendered but not yet through the output stage (RenderFrame -> FlushOutput): run as a
   // block (OutputStage::ProcessBlock) the stage's filters keep their state in registers and one
   // frame's work overlaps the next's. Flushed before anything that reads or changes the stage (a
@@ -223,7 +227,7 @@ struct Scene::Impl {
     rough_in = contact_step = 0.0;
     noise_keep = 0.0;
     noise_in = 1.0;
-    rough_raw = rough_c1 = rough_felt = noise_w = noise_junction = 0.0;
+    rough_raw = rough_c1 = rough_felt = noise_w = noise_junction = felt_adjust_n = 0.0;
     noise_junction_step = 0.0;
     idle = false;
     frame_count = 0;
@@ -555,6 +559,11 @@ struct Scene::Impl {
       if (friction_skipped) drive.friction_share = 0.0;  // the kernel neither solves nor stores it
       surface_m = next;
       StepContactSample(config, modes, probe, drive);
+      // The part of the friction's noise the transducer does not carry (felt_noise_share): in
+      // the force only where the kernel solved the friction this sample.
+      felt_adjust_n = !friction_skipped && probe.friction_n != 0.0
+                          ? -(1.0 - felt_noise_share) * drive.noise_n
+                          : 0.0;
       if (pen_body) StepBody();
       // Rolling: the creep's junction noise (kRollingCreep) on the surface at the contact, from
       // the friction noise's process (SetSpatialSteps: renewed as the patch rolls its length).
@@ -564,6 +573,8 @@ struct Scene::Impl {
         const double force = config.friction.sigma3 * w *
                              std::sqrt(kRollingCreep * drive.slide_velocity_mps * probe.normal_n);
         modes.Kick(-force / fs);
+        // The tip takes the reaction, felt as a slide's noise is (felt_noise_share).
+        felt_adjust_n += felt_noise_share * force;
       }
       // A grain of a crumbling crust broke under the tip: its flake flies off, the crust takes
       // the reaction (down).
@@ -592,7 +603,7 @@ struct Scene::Impl {
     const double pickup = modes.PickupVelocity() + crumble.Ring();
     if (!std::isfinite(pickup)) modes.Reset();  // never let a NaN ring forever
     // The stylus carries the contact to the hand whether or not the surface rings in the
-    // transducer's band (glass: modes from 683 Hz, most above 800 Hz). With a pen body, what the
+    // transducer's band (glass: modes from 683 Hz, all above 400 Hz). With a pen body, what the
     // hand holds is the body: its velocity along the pen, which follows the relief below the
     // body's resonance and the contact force's fluctuation above it. Along the stroke (and
     // without a body, for the whole force) the force as the velocity it gives the pen's mass at
@@ -600,8 +611,9 @@ struct Scene::Impl {
     // The band-pass drops the steady part; what is felt is the fluctuation.
     double felt = 0.0;
     if (probe.active) {
-      felt = pen_body ? body_velocity_mps + probe.friction_n * felt_per_newton
-                      : (probe.normal_n + probe.friction_n) * felt_per_newton;
+      const double friction = probe.friction_n + felt_adjust_n;
+      felt = pen_body ? body_velocity_mps + friction * felt_per_newton
+                      : (probe.normal_n + friction) * felt_per_newton;
     }
     if (pending == kOutputChunk) FlushOutput();
     if (pending == 0) pending_out = frame;
@@ -666,6 +678,9 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   }
   const double felt_mass = s.pen_body ? m.probe.body_mass_kg : m.probe.mass_kg;
   s.felt_per_newton = 1.0 / (felt_mass * 2.0 * std::numbers::pi * 250.0);
+  s.felt_noise_share = std::isfinite(m.friction.felt_noise_share)
+                           ? std::clamp(m.friction.felt_noise_share, 0.0, 1.0)
+                           : 1.0;
   s.config.SetTiming(s.fs, ChooseContactOversample(m.impact, m.probe.mass_kg, s.fs));
   // Automatic oversampling adapts per compression (contact.h, ContactSubstepsForSpeed).
   const bool adaptive = m.impact.enabled && m.impact.oversample <= 0;

@@ -4,7 +4,8 @@
 //   ProbeCommand -> SurfaceReader (profile under the probe: width window, penetration threshold,
 //   scrape | rub | roll) -> contact (Hunt–Crossley normal force + elasto-plastic friction, solved
 //   together with the probe mass and the resonator) -> ModalResonator (exact per-mode update)
-//   -> OutputStage (ch 1 sound: gain + soft limiter; ch 2 haptic: 40–800 Hz band, gain, limiter).
+//   -> OutputStage (ch 1 sound: gain + soft limiter; ch 2 haptic: the contact force in 40–400 Hz,
+//   gain, limiter, band limit).
 // Process() loops one inline per-sample kernel; the block is split at the commands' frame
 // offsets, so rendering in any block size gives bit-identical output. Process() allocates nothing,
 // takes no lock, throws nothing, does no I/O, and runs with denormals flushed (FTZ/DAZ).

@@ -38,6 +38,9 @@ const std::set<std::string>& KnownOpen() {
       "broken glass/ramp-sharpness/rub/p0.2",
       "broken glass/ramp-sound/rub/p0.8",
       "broken glass/ramp-sharpness/roll/p0.2",
+      // The felt channel is the contact force: a light roll over the pane feels its cracks, and
+      // at 300 mm/s it feels them 4 dB less than at 30 (not yet explained).
+      "broken glass/speed-haptic/roll/p0.2",
       "wooden board/speed-sharpness/scrape/p0.8",
       "wooden board/pressure-sound/scrape/100mm/s",
       "wooden board/ramp-sharpness/scrape/p0.8",

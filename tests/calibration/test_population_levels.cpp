@@ -74,6 +74,18 @@ TEST_CASE("visitor population: every texture meets the level-matching targets", 
            "loudest/" + r.name);
     // A stroke's loudest 400 ms is at least as loud as the stroke as a whole.
     CHECK(r.momentary_max >= r.sound_max - 0.5);
+    INFO("vibration: near the ceiling " << r.felt_near_ceiling_median << " (median stroke), "
+                                        << r.felt_near_ceiling_loudest << " (loudest 5 %), crest "
+                                        << r.felt_crest_median << " dB, 40-400 Hz share "
+                                        << r.felt_band_fraction_median << ", above 1 kHz "
+                                        << r.felt_above_1k_median << " dB");
+    target(r.felt_near_ceiling_median <= sas::kiosk::kMedianNearCeiling &&
+               r.felt_near_ceiling_loudest <= sas::kiosk::kLoudestNearCeiling &&
+               r.felt_crest_median >= sas::kiosk::kMinCrestDb,
+           "detail/" + r.name);
+    target(r.felt_band_fraction_median >= sas::kiosk::kMinSkinBandFraction &&
+               r.felt_above_1k_median <= -sas::kiosk::kMinAbove1kDb,
+           "band/" + r.name);
     for (const char* style : {"scrape", "rub", "roll"}) {
       INFO(style);
       REQUIRE(r.per_style.count(style) == 1);
@@ -84,6 +96,17 @@ TEST_CASE("visitor population: every texture meets the level-matching targets", 
   }
   // The judge the document uses agrees: it fails exactly when a target above does.
   CHECK(targets.all() == (open == 0));
+
+  // Told apart by vibration alone: fitted on another population (seed 1), judged on this one.
+  const auto train_strokes = sas::kiosk::VisitorPopulation(200, 1);
+  std::vector<PopulationLevels> train;
+  for (std::size_t t = 0; t < paths.size(); ++t) {
+    train.push_back(sas::kiosk::MeasurePopulation(paths, t, train_strokes, defaults));
+  }
+  const auto feel = sas::kiosk::ClassifyByFeel(train, rows);
+  INFO("right texture by vibration alone: " << feel.accuracy << " (one centroid per texture: "
+                                             << feel.centroid_accuracy << ")");
+  CHECK(feel.accuracy >= sas::kiosk::kMinFeltAccuracy);
 }
 #endif
 
@@ -96,6 +119,11 @@ TEST_CASE("visitor population: the targets catch a texture that misses one", "[c
   even.momentary_max = -17.0;
   even.haptic_median = -12.0;
   even.per_style = {{"scrape", {-26.0, -14.0}}, {"rub", {-25.0, -10.0}}, {"roll", {-26.0, -12.0}}};
+  even.felt_near_ceiling_median = 0.002;
+  even.felt_near_ceiling_loudest = 0.02;
+  even.felt_crest_median = 14.0;
+  even.felt_band_fraction_median = 0.9;
+  even.felt_above_1k_median = -50.0;
   const std::vector<PopulationLevels> four(4, even);
   CHECK(sas::kiosk::CheckPopulationTargets(four, 0.0).all());
   {
@@ -123,7 +151,7 @@ TEST_CASE("visitor population: the targets catch a texture that misses one", "[c
   }
   {
     auto rows = four;
-    rows[3].per_style["roll"].second = -15.5;
+    rows[3].per_style["roll"].second = -24.5;
     const auto t = sas::kiosk::CheckPopulationTargets(rows, 0.0);
     CHECK_FALSE(t.felt);
     CHECK((t.sound && t.haptic && t.loudest));
@@ -132,5 +160,26 @@ TEST_CASE("visitor population: the targets catch a texture that misses one", "[c
     auto rows = four;
     rows[3].per_style.erase("rub");  // a style never played is not felt
     CHECK_FALSE(sas::kiosk::CheckPopulationTargets(rows, 0.0).felt);
+  }
+  // The vibration's detail: near the ceiling (median stroke, loudest 5 %) and the crest factor.
+  for (int which = 0; which < 3; ++which) {
+    auto rows = four;
+    if (which == 0) rows[1].felt_near_ceiling_median = 0.011;
+    if (which == 1) rows[1].felt_near_ceiling_loudest = 0.051;
+    if (which == 2) rows[1].felt_crest_median = 9.9;
+    const auto t = sas::kiosk::CheckPopulationTargets(rows, 0.0);
+    INFO(which);
+    CHECK_FALSE(t.detail);
+    CHECK((t.sound && t.haptic && t.loudest && t.felt && t.band));
+  }
+  // The skin's band: the share within 40-400 Hz, and what is left above 1 kHz.
+  for (int which = 0; which < 2; ++which) {
+    auto rows = four;
+    if (which == 0) rows[2].felt_band_fraction_median = 0.69;
+    if (which == 1) rows[2].felt_above_1k_median = -29.0;
+    const auto t = sas::kiosk::CheckPopulationTargets(rows, 0.0);
+    INFO(which);
+    CHECK_FALSE(t.band);
+    CHECK((t.sound && t.haptic && t.loudest && t.felt && t.detail));
   }
 }

@@ -463,3 +463,15 @@ TEST_CASE(
                  "ball_radius_m = 0.002\nbody_mass_kg = 0.015\nbody_spring_n_per_m = 0\n")),
       Catch::Contains("m.toml:10: probe.body_spring_n_per_m:") && Catch::Contains("out of range"));
 }
+
+TEST_CASE(
+    "the friction noise's felt share is optional in [friction]: left out, the transducer carries "
+    "all of it, and given, it is read and range-checked",
+    "[kiosk]") {
+  CHECK(Parse(kValid).params.friction.felt_noise_share == 1.0);
+  CHECK(Parse(Edit("sigma3_noise = 0.25\n", "sigma3_noise = 0.25\nfelt_noise_share = 0.05\n"))
+            .params.friction.felt_noise_share == 0.05);
+  CHECK_THROWS_WITH(
+      Parse(Edit("sigma3_noise = 0.25\n", "sigma3_noise = 0.25\nfelt_noise_share = 1.5\n")),
+      Catch::Contains("m.toml:22: friction.felt_noise_share:") && Catch::Contains("out of range"));
+}

@@ -63,10 +63,15 @@ TEST_CASE("a valid texture file parses into its values", "[surface]") {
   CHECK(t.picture_path == "/x/picture.png");
   CHECK(t.gains.haptic_gain_db == -3.0);
   CHECK(t.gains.sound_trim_db == 0.0);  // optional: absent is no trim
+  CHECK(t.gains.haptic_trim_db == 0.0);
   CHECK(ParseTextureFile(Replace(kValid, "haptic_gain_db = -3.0\n",
                                  "haptic_gain_db = -3.0\nsound_trim_db = -1.5\n"),
                          "/x/texture.toml")
             .gains.sound_trim_db == -1.5);
+  CHECK(ParseTextureFile(Replace(kValid, "haptic_gain_db = -3.0\n",
+                                 "haptic_gain_db = -3.0\nhaptic_trim_db = 2.25\n"),
+                         "/x/texture.toml")
+            .gains.haptic_trim_db == 2.25);
   CHECK(t.probe.style == sas::synth::ProbeStyle::kRub);
   CHECK(t.probe.width_mm == 0.5);
   CHECK_FALSE(t.bubbles.has_value());
@@ -90,6 +95,11 @@ TEST_CASE("texture file mistakes are reported with file, line and key", "[surfac
                                              "haptic_gain_db = -3.0\nsound_trim_db = 40\n"),
                                      "t.toml"),
                     Catch::Contains("t.toml:12") && Catch::Contains("gains.sound_trim_db") &&
+                        Catch::Contains("outside"));
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "haptic_gain_db = -3.0\n",
+                                             "haptic_gain_db = -3.0\nhaptic_trim_db = -13\n"),
+                                     "t.toml"),
+                    Catch::Contains("t.toml:12") && Catch::Contains("gains.haptic_trim_db") &&
                         Catch::Contains("outside"));
   CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "width_mm = 0.5", "width_mm = 500"), "t.toml"),
                     Catch::Contains("t.toml:14") && Catch::Contains("probe.width_mm") &&

@@ -229,7 +229,7 @@ TEST_CASE("the haptic channel of a rendered scribble has at most -40 dB of its e
   Render(options);
   const Wav wav = ReadWav(options.out_path);
   REQUIRE(wav.channels == 2);
-  // Channel 2 drives a 40–800 Hz transducer.
+  // Channel 2 drives a 40–400 Hz transducer (the contact force).
   CHECK(EnergyFractionAbove(wav.channel[1], 48000.0, 1000.0) < 1e-4);
   // The sound channel, for contrast, has real content above 1 kHz (wood modes up to 2.6 kHz),
   // so the check above is not met merely because the render is dull.
