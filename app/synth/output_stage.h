@@ -1,7 +1,9 @@
 #pragma once
 // Output stage: channel 1 drives the speaker, channel 2 the vibrotactile
-// transducer on the stylus (paper §4: the transducer is "driven by the low-frequency components of
-// the synthesized audio output"). Chain: input (pickup velocity, m/s, where 1 m/s = full scale)
+// transducer on the stylus. The paper (§4) drives the transducer with the low-frequency part of the
+// synthesized audio; here it gets the contact force on the tip instead (`felt`), which carries the
+// relief, the cracks and the bubbles where the surface's own ring (glass: all above 400 Hz) does
+// not. Chain: inputs pickup velocity and felt (m/s, where 1 m/s = full scale)
 //   ch 1: NaN/Inf -> 0, × sound_gain × stroke sound gain, soft limiter
 //   ch 2: NaN/Inf -> 0, 4th-order Butterworth high-pass at `low` (the contact force's slow part,
 //         the relief's shape under the hand, is not vibration) and low-pass at `high` (so that the
@@ -173,7 +175,8 @@ class OutputStage {
   // Below the knee (the usual sample, and false for NaN) inline; the rest out of line.
   static double SoftLimit(double x) { return std::fabs(x) <= kKnee ? x : SoftShoulder(x); }
 
-  // One frame: writes the sound and haptic samples for input `pickup`.
+  // One frame of sound alone: the transducer gets nothing from the pickup (its haptic sample is
+  // the band limit's ring of what came before).
   void Process(double pickup, float* sound, float* haptic) { Process(pickup, 0.0, sound, haptic); }
   // The same with `felt` (m/s, like the pickup) added to the transducer's input only: what the
   // stylus itself carries from the contact (Scene: the contact force).
