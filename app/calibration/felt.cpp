@@ -125,6 +125,7 @@ FeltFigures MeasureFelt(std::span<const float> x, double fs_hz, double ceiling) 
     int bins = 0;
     const int first = static_cast<int>(std::ceil(40.0 * padded / fs_hz));
     const int last = static_cast<int>(std::floor(400.0 * padded / fs_hz));
+    double best = -1.0, best_hz = 40.0, moment = 0.0;
     for (int k = first; k + smooth <= last + 1; k += smooth) {
       double p = 0.0;
       for (int j = k; j < k + smooth; ++j) {
@@ -134,15 +135,6 @@ FeltFigures MeasureFelt(std::span<const float> x, double fs_hz, double ceiling) 
       log_sum += std::log(p + 1e-300);
       sum += p;
       ++bins;
-    }
-    f.features[9] = bins > 0 && sum > 0.0 ? std::exp(log_sum / bins) / (sum / bins) : 0.0;
-    double best = -1.0, best_hz = 40.0, moment = 0.0;
-    for (int k = first; k + smooth <= last + 1; k += smooth) {
-      double p = 0.0;
-      for (int j = k; j < k + smooth; ++j) {
-        const auto c = spectrum.at<cv::Vec2d>(0, j);
-        p += c[0] * c[0] + c[1] * c[1];
-      }
       const double hz = (k + 0.5 * smooth) * fs_hz / padded;
       moment += p * std::log2(hz);
       if (p > best) {
@@ -150,6 +142,7 @@ FeltFigures MeasureFelt(std::span<const float> x, double fs_hz, double ceiling) 
         best_hz = hz;
       }
     }
+    f.features[9] = bins > 0 && sum > 0.0 ? std::exp(log_sum / bins) / (sum / bins) : 0.0;
     f.features[13] = std::log2(best_hz);
     f.features[14] = sum > 0.0 ? moment / sum : std::log2(40.0);
   }

@@ -100,19 +100,7 @@ void OutputStage::Prepare(const OutputParams& params, double sample_rate_hz) {
     const double q = 1.0 / (2.0 * std::cos((2.0 * k - 1.0) * std::numbers::pi / 32.0));
     sections_[static_cast<std::size_t>(k)] = LowPass(high, q, sample_rate_hz);
   }
-  // The band limit's L1 norm: its impulse response summed over a few seconds (by then it has
-  // decayed far under 1e-12 of its peak).
-  {
-    auto sections = sections_;
-    double sum = 0.0;
-    const auto n = static_cast<long>(std::max(1.0, 2.0 * sample_rate_hz));
-    for (long i = 0; i < n; ++i) {
-      double v = i == 0 ? 1.0 : 0.0;
-      for (auto& s : sections) v = s.Process(v);
-      sum += std::fabs(v);
-    }
-    band_limit_gain_ = std::isfinite(sum) && sum > 1.0 ? sum : 1.0;
-  }
+  sample_rate_hz_ = sample_rate_hz;
   haptic_drive_ = haptic_gain_ / haptic_ceiling_;
   Reset();
 }
@@ -301,6 +289,21 @@ int OutputStage::ProcessRun(const double* pickup, const double* felt, float* out
     return m + 1;
   }
   return n;
+}
+
+double OutputStage::BandLimitGain() const {
+  // The band limit's L1 norm: its impulse response summed over two seconds (by then it has
+  // decayed far under 1e-12 of its peak). Not real-time: for tests and tools, not Prepare.
+  auto sections = sections_;
+  for (auto& s : sections) s.s1 = s.s2 = 0.0;
+  double sum = 0.0;
+  const auto n = static_cast<long>(std::max(1.0, 2.0 * sample_rate_hz_));
+  for (long i = 0; i < n; ++i) {
+    double v = i == 0 ? 1.0 : 0.0;
+    for (auto& s : sections) v = s.Process(v);
+    sum += std::fabs(v);
+  }
+  return std::isfinite(sum) && sum > 1.0 ? sum : 1.0;
 }
 
 double OutputStage::FilterActivity() const {

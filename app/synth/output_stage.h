@@ -242,8 +242,8 @@ class OutputStage {
   }
 
   // The most the band limit after the limiter can lift a peak (the L1 norm of its impulse
-  // response): the transducer's output never exceeds haptic_ceiling × this.
-  double BandLimitGain() const { return band_limit_gain_; }
+  // response): the transducer's output never exceeds haptic_ceiling × this. Not real-time.
+  double BandLimitGain() const;
 
   // Largest magnitude held in the filter state (for idle detection).
   double FilterActivity() const;
@@ -258,7 +258,7 @@ class OutputStage {
   double haptic_gain_ = 1.0;
   double haptic_ceiling_ = 1.0;
   double haptic_drive_ = 1.0;  // haptic_gain_ / haptic_ceiling_
-  double band_limit_gain_ = 1.0;  // the L1 norm of the post-limiter sections' impulse response
+  double sample_rate_hz_ = 48000.0;
   double low_vibration_gain_ = 0.25;
   double ramp_samples_ = 960.0;
   bool low_vibration_ = false;
