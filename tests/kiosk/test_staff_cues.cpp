@@ -29,6 +29,7 @@
 #include "platform/log/log.h"
 #include "sas/version.h"
 #include "support/fft.h"
+#include "support/sound_file.h"
 #include "support/temp_dir.h"
 #include "surface/audio_file.h"
 #include "surface/loudness.h"
@@ -42,6 +43,7 @@ namespace fs = std::filesystem;
 using sas::kiosk::Cue;
 using sas::kiosk::KioskConfig;
 using sas::kiosk::SpokenCues;
+using sas::test::WriteSound;
 
 const std::string kStringsDir = std::string(sas::kSourceDir) + "/textures/strings";
 const std::vector<std::string> kTextures = {"bubble_wrap", "broken_glass", "wooden_board",
@@ -76,21 +78,6 @@ std::vector<float> Speak(const std::string& voice, int wpm, const std::string& t
   sf_close(file);
   fs::remove(out);
   return x;
-}
-
-void WriteSound(const std::string& path, int format, int rate, int channels,
-                const std::vector<float>& interleaved) {
-  SF_INFO info{};
-  info.samplerate = rate;
-  info.channels = channels;
-  info.format = format;
-  SNDFILE* file = sf_open(path.c_str(), SFM_WRITE, &info);
-  REQUIRE(file != nullptr);
-  sf_command(file, SFC_SET_CLIPPING, nullptr, SF_TRUE);
-  REQUIRE(sf_writef_float(file, interleaved.data(),
-                          static_cast<sf_count_t>(interleaved.size()) / channels) ==
-          static_cast<sf_count_t>(interleaved.size()) / channels);
-  sf_close(file);
 }
 
 // A staff recording of `speech` (22.05 kHz): 44.1 kHz stereo, the right channel 3 dB lower and
