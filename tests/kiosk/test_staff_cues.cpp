@@ -26,6 +26,7 @@
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/spoken_cues.h"
 #include "kiosk/staff_cues.h"
+#include "kiosk/staff_panel.h"
 #include "platform/log/log.h"
 #include "sas/version.h"
 #include "support/fft.h"
@@ -261,8 +262,10 @@ TEST_CASE(
   CHECK(clip(cues.ForMessage("count_3")).size() == SyntheticFrames("de", "count_3"));
 }
 
-TEST_CASE("the kiosk plays a staff recording for its language and key and reports its sentence",
-          "[kiosk]") {
+TEST_CASE(
+    "the kiosk plays a staff recording for its language and key, reports its sentence and "
+    "counts it on the staff panel",
+    "[kiosk]") {
   sas::test::TempDir staff;
   fs::create_directories(staff.path() / "cues" / "de");
   // The language key speaks the new language's own name.
@@ -290,6 +293,23 @@ TEST_CASE("the kiosk plays a staff recording for its language and key and report
     for (std::size_t i = 0; i < 128; ++i) speaker.push_back(block[2 * i]);
   }
   CHECK(BestCorrelation(speaker, heard) > 0.95);
+
+  // Staff see it on the panel's counters line.
+  sas::platform::Logger log;
+  log.SetEchoToStderr(false);
+  sas::platform::DeviceStatusBoard board{log};
+  sas::platform::OfflineAudioOutput output(engine.audio(), sas::platform::AudioOutputConfig{});
+  sas::platform::SwitchInputs switches;
+  sas::platform::TokenSelector selector;
+  int counted = 0;
+  for (const auto& line : sas::kiosk::StaffPanelLines(
+           {&engine, &output, &board, &switches, &selector, false, {}, "", 128, 48000})) {
+    if (line.text.find(", cues ") != std::string::npos) {
+      ++counted;
+      CHECK_THAT(line.text, Catch::EndsWith(" (1 staff-recorded)"));
+    }
+  }
+  CHECK(counted == 1);
 }
 
 TEST_CASE(
