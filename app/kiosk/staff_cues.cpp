@@ -141,7 +141,13 @@ StaffCueMap LoadStaffCues(const std::string& cues_dir, const std::vector<std::st
                           platform::Logger& log) {
   StaffCueMap found;
   std::error_code error;
-  if (cues_dir.empty() || !fs::exists(cues_dir, error)) return found;
+  if (cues_dir.empty()) return found;
+  if (!fs::exists(cues_dir, error)) {
+    // Said once, so that a staff_dir the kiosk cannot see (a typo, or under /home, which the unit
+    // hides) does not look like cues that were all taken.
+    log.Info("cues", "no staff cues: " + cues_dir + " does not exist");
+    return found;
+  }
   const auto refuse = [&](const fs::path& path, const std::string& why,
                           const std::string& instead = "the synthetic cue is kept") {
     log.Warn("cues", "staff cue " + path.string() + " refused: " + why + "; " + instead);

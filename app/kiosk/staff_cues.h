@@ -42,7 +42,7 @@ struct StaffCue {
 // language code -> cue key -> recording.
 using StaffCueMap = std::map<std::string, std::map<std::string, StaffCue>>;
 
-// Reads `cues_dir` (<staff_dir>/cues; absent: no staff cues, nothing logged). `languages`: the
+// Reads `cues_dir` (<staff_dir>/cues; absent: no staff cues, one info line says so). `languages`: the
 // kiosk's languages (a folder of another shipped language is reported and not read); `keys`:
 // every cue key the kiosk speaks. Each refusal is a warning on `log` (component "cues"); each of
 // `languages` gets one info line with its count of staff cues. Never throws.

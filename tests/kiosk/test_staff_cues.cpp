@@ -407,7 +407,10 @@ TEST_CASE(
         SyntheticFrames("en", "invitation"));
 }
 
-TEST_CASE("a staff cue the kiosk's user may not read is refused saying so", "[kiosk]") {
+TEST_CASE(
+    "a staff cue the kiosk's user may not read is refused saying so, and a missing staff "
+    "folder is said once",
+    "[kiosk]") {
   sas::test::TempDir staff;
   const fs::path de = staff.path() / "cues" / "de";
   fs::create_directories(de);
@@ -434,6 +437,17 @@ TEST_CASE("a staff cue the kiosk's user may not read is refused saying so", "[ki
   REQUIRE(cues.count("de") == 1);
   CHECK(cues.at("de").count("voice_ready") == 0);
   CHECK(cues.at("de").count("invitation") == 1);  // its readable neighbour is taken
+
+  // A staff folder the kiosk cannot see says so once, at info: nothing is wrong with a box whose
+  // staff recorded nothing.
+  const auto none =
+      sas::kiosk::LoadStaffCues((staff.path() / "no" / "cues").string(), {"de"},
+                                sas::kiosk::CueKeys(), 48000.0, sas::platform::DefaultLogger());
+  CHECK(none.empty());
+  CHECK(
+      journal.At(6, "no staff cues: " + (staff.path() / "no" / "cues").string() + " does not exist")
+          .size() == 1);
+  CHECK(journal.Count(4) == 1);
 }
 
 TEST_CASE("a cue's duration bounds hold every synthetic cue and keep it from being cut off",
