@@ -34,6 +34,8 @@ configure() {
     cp "$share_dir/kiosk.toml" "$config_dir/kiosk.toml"
     chmod 0644 "$config_dir/kiosk.toml"
   fi
+  # Where staff put their recorded cues (kiosk.toml [paths] staff_dir): made once, then theirs.
+  [ -d "$config_dir/cues" ] || install -d -m 0755 "$config_dir/cues"
   if have udevadm && [ -d /run/udev ]; then
     udevadm control --reload-rules || true
     udevadm trigger --subsystem-match=gpio --subsystem-match=hidraw --subsystem-match=input || true

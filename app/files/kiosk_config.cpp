@@ -39,6 +39,19 @@ auto Text(std::string KioskConfig::*member, bool may_be_empty = false) {
   };
 }
 
+// A folder: empty (none) or an absolute path (the unit's working directory is /, so a relative one
+// would point somewhere nobody meant).
+auto Folder(std::string KioskConfig::*member) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
+    if (!value->empty() && value->front() != '/') {
+      throw ConfigError(where + "expected an absolute path (starting with /) or \"\"");
+    }
+    config.*member = *value;
+  };
+}
+
 auto Choice(std::string KioskConfig::*member, std::vector<std::string> choices) {
   return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     const auto value = node.value<std::string>();
@@ -231,6 +244,7 @@ const std::vector<KeySpec>& Schema() {
       {"transducer", "resonance_hz",
        RealOrOff(&KioskConfig::transducer_resonance_hz, 20.0, 1000.0)},
       {"transducer", "q", Real(&KioskConfig::transducer_q, 0.3, 50.0)},
+      {"paths", "staff_dir", Folder(&KioskConfig::staff_dir)},
   };
   return schema;
 }

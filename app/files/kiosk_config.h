@@ -85,6 +85,10 @@ struct KioskConfig {
   // broadband transducer, nothing compensated.
   double transducer_resonance_hz = 0.0;
   double transducer_q = 1.0;
+  // [paths] — where staff put their own files, outside the package's (an upgrade, a removal and a
+  // reinstall keep them; a purge removes them with kiosk.toml): recorded cues in
+  // <staff_dir>/cues/<language>/<cue key>.wav (kiosk/staff_cues.h). "": none are read.
+  std::string staff_dir = "/etc/sketch-a-scratch";
 };
 
 // The largest configuration file read. The shipped kiosk.toml is a few kB with every key and

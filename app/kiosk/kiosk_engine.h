@@ -196,6 +196,7 @@ class KioskEngine final {
   const KioskConfig& config() const { return options_.config; }
   const std::string& cues_dir() const { return cues_.cues_dir(); }
   int cues_loaded() const { return cues_.cues_loaded(); }
+  int staff_cues_loaded() const { return cues_.staff_cues_loaded(); }
   // The current language's table (on-screen texts) and its code.
   const LanguageTable& strings() const { return cues_.strings(); }
   const std::string& language() const { return strings().code; }

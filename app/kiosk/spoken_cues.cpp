@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "kiosk/staff_cues.h"
 #include "platform/log/log.h"
 #include "surface/audio_file.h"
 #include "surface/cue_library.h"
@@ -46,7 +47,7 @@ SpokenCues::SpokenCues(const KioskConfig& config, const std::string& strings_dir
                        std::vector<std::string> texture_keys)
     : cues_dir_(std::move(cues_dir)), texture_keys_(std::move(texture_keys)) {
   LoadLanguages(config, strings_dir);
-  LoadCues(config.sample_rate_hz, spoken_cues);
+  LoadCues(config, spoken_cues);
 }
 
 int SpokenCues::AddClip(std::string name, std::vector<float> mono, int channel) {
@@ -89,8 +90,38 @@ void SpokenCues::LoadLanguages(const KioskConfig& config, const std::string& str
   }
 }
 
-void SpokenCues::LoadCues(double fs_hz, bool spoken_cues) {
+void SpokenCues::LoadCues(const KioskConfig& config, bool spoken_cues) {
+  const double fs_hz = config.sample_rate_hz;
+  // Staff recordings replace the synthetic cue of their language and key (staff_cues.h).
+  StaffCueMap staff;
+  if (spoken_cues && !config.staff_dir.empty()) {
+    std::vector<std::string> codes, keys(CueKeys());
+    for (const auto& language : languages_) codes.push_back(language.table.code);
+    for (const auto& key : texture_keys_) {
+      keys.push_back(key + "_name");
+      keys.push_back(key + "_description");
+    }
+    staff = LoadStaffCues((fs::path(config.staff_dir) / kStaffCuesFolder).string(), codes, keys,
+                          fs_hz, platform::DefaultLogger());
+  }
+  const LanguageTable* table = nullptr;  // the language being loaded
   const auto load = [&](const fs::path& dir, const std::string& key) -> int {
+    if (const auto language = staff.find(table->code); language != staff.end()) {
+      if (const auto found = language->second.find(key); found != language->second.end()) {
+        const int index = AddClip(key, std::move(found->second.samples), 0);
+        // Without a .txt of their own, the sentence is the table's, which the synthetic cue's
+        // .txt holds (the table has no English texture names: those are texture.toml's).
+        std::string& text = clips_.back().text;
+        text = found->second.text;
+        if (text.empty() && !cues_dir_.empty()) {
+          std::ifstream synthetic(dir / (key + ".txt"));
+          std::getline(synthetic, text);
+        }
+        if (text.empty()) text = table->CueText(key);
+        ++staff_cues_;
+        return index;
+      }
+    }
     if (cues_dir_.empty()) return -1;
     const fs::path path = dir / (key + ".wav");
     std::error_code error;
@@ -120,9 +151,10 @@ void SpokenCues::LoadCues(double fs_hz, bool spoken_cues) {
     fs::path dir = fs::path(cues_dir_) / language.table.code;
     std::error_code error;
     if (!fs::is_directory(dir, error)) {
-      if (l != 0) continue;
-      dir = cues_dir_;
+      if (l != 0 && !staff.count(language.table.code)) continue;
+      if (l == 0) dir = cues_dir_;
     }
+    table = &language.table;
     for (const auto& key : texture_keys_) {
       language.name_cues.push_back(load(dir, key + "_name"));
       language.description_cues.push_back(load(dir, key + "_description"));

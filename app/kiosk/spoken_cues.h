@@ -1,10 +1,11 @@
 #pragma once
 // The kiosk's languages and spoken cues, loaded once at start so playing one never touches the
 // disk: the language tables (on-screen texts, strings.h) of the configured language and of the
-// visitor's choices, each language's cue recordings (<cues>/<language>/, surface/cue_library.h),
-// the recording's tone and the staff test signals. The control side asks which clip says a
-// session action or a message in the current language; the clips' samples go to the audio side
-// (the player) once, in clip order. A missing table or cue is logged and stays silent.
+// visitor's choices, each language's cue recordings (<cues>/<language>/, surface/cue_library.h;
+// one the staff recorded replaces its synthetic cue: staff_cues.h), the recording's tone and the
+// staff test signals. The control side asks which clip says a session action or a message in the
+// current language; the clips' samples go to the audio side (the player) once, in clip order. A
+// missing table or cue is logged and stays silent.
 
 #include <map>
 #include <string>
@@ -19,7 +20,7 @@ namespace sas::kiosk {
 
 // A spoken cue as it was handed to the audio side (tests, the journal): the language, the cue's
 // key ("wooden_board_name", "count_3") and the sentence its file holds (cue_maker's .txt next to
-// it; "" when absent).
+// it; "" when absent; a staff recording's own .txt, else the table's sentence).
 struct CueEvent {
   std::int64_t time_ns = 0;
   std::string language;
@@ -60,6 +61,8 @@ class SpokenCues {
 
   const std::string& cues_dir() const { return cues_dir_; }
   int cues_loaded() const;
+  // Of those, the ones staff recorded (staff_cues.h), which replaced synthetic ones.
+  int staff_cues_loaded() const { return staff_cues_; }
 
  private:
   struct Clip {
@@ -74,7 +77,7 @@ class SpokenCues {
 
   int AddClip(std::string name, std::vector<float> mono, int channel);
   void LoadLanguages(const KioskConfig& config, const std::string& strings_dir);
-  void LoadCues(double fs_hz, bool spoken_cues);
+  void LoadCues(const KioskConfig& config, bool spoken_cues);
 
   std::string cues_dir_;
   std::vector<std::string> texture_keys_;
@@ -84,6 +87,7 @@ class SpokenCues {
   std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
   int language_ = 0;
   int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
+  int staff_cues_ = 0;
 };
 
 }  // namespace sas::kiosk

@@ -137,7 +137,10 @@ std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in) {
   lines.push_back({"Recordings " + std::to_string(counters.recordings) + " (failed " +
                    std::to_string(counters.failed_recordings) + "), visits " +
                    std::to_string(counters.sessions) + ", cues " +
-                   std::to_string(engine.cues_loaded())});
+                   std::to_string(engine.cues_loaded()) +
+                   (engine.staff_cues_loaded() > 0
+                        ? " (" + std::to_string(engine.staff_cues_loaded()) + " staff-recorded)"
+                        : "")});
   lines.push_back({in.config_line});
   const auto& staff = engine.staff_settings();
   lines.push_back({"Volume " + Fixed(staff.volume_db, 0) + " dB, vibration " +

@@ -1,20 +1,56 @@
 // Spoken cue files -> RAM (see cue_library.h).
 #include "surface/cue_library.h"
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 #include <filesystem>
+#include <numbers>
+#include <stdexcept>
 
 #include "surface/audio_file.h"
+#include "surface/loudness.h"
 
 namespace sas::surface {
-namespace {
-constexpr double kMaxCueClippedFraction = 0.001;
-}  // namespace
-
 std::string CueLevelProblem(const AudioClip& clip) {
   if (clip.clipped_fraction <= kMaxCueClippedFraction) return {};
   return std::to_string(clip.clipped_fraction * 100.0) +
          " % of the samples at or beyond full scale (a damaged file)";
+}
+
+ShapedCue ShapeCue(std::vector<float> x, double rate_hz) {
+  float peak = 0.0f;
+  for (float v : x) peak = std::max(peak, std::fabs(v));
+  if (peak <= 0.0f) throw std::runtime_error("silence: no sample above zero");
+  const float floor = peak * static_cast<float>(std::pow(10.0, kCueTrimBelowPeakDb / 20.0));
+  std::size_t first = 0, last = x.size();
+  while (first < x.size() && std::fabs(x[first]) < floor) ++first;
+  while (last > first && std::fabs(x[last - 1]) < floor) --last;
+  const auto margin = static_cast<std::size_t>(kCueMarginS * rate_hz);
+  first = first > margin ? first - margin : 0;
+  last = std::min(x.size(), last + margin);
+  x = std::vector<float>(x.begin() + static_cast<std::ptrdiff_t>(first),
+                         x.begin() + static_cast<std::ptrdiff_t>(last));
+
+  ShapedCue shaped;
+  shaped.source_loudness_lufs = KWeightedLoudnessDb(x, rate_hz, 0, x.size());
+  double gain_db = kCueLoudnessLufs - shaped.source_loudness_lufs;
+  // The trimmed signal keeps the peak found above.
+  gain_db = std::min(gain_db, kCuePeakDbfs - 20.0 * std::log10(static_cast<double>(peak)));
+  shaped.gain_db = gain_db;
+  const double gain = std::pow(10.0, gain_db / 20.0);
+  const auto fade = static_cast<std::size_t>(kCueFadeS * rate_hz);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    double w = 1.0;
+    const std::size_t edge = std::min(i, x.size() - 1 - i);
+    if (edge < fade) {
+      w = 0.5 -
+          0.5 * std::cos(std::numbers::pi * static_cast<double>(edge) / static_cast<double>(fade));
+    }
+    x[i] = static_cast<float>(x[i] * gain * w);
+  }
+  shaped.samples = std::move(x);
+  return shaped;
 }
 
 const std::vector<std::string>& MessageCueNames() {

@@ -9,6 +9,7 @@
 // staff panel) and Find() returns nullptr for it, so the kiosk simply stays silent there.
 // Set-up only.
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,8 +21,33 @@ namespace sas::surface {
 // cue_maker writes every cue with its peak at or below -1 dBFS. A float WAV can hold any value
 // (1e30 decodes fine and the reader clips it to full scale): a cue with more than a stray sample
 // at full scale is a damaged file and would play as a full-scale square wave. Returns why `clip`
-// is no cue, or "" when it may be one.
+// is no cue, or "" when it may be one. A recording with more of its samples at full scale than
+// kMaxCueClippedFraction is clipped audibly.
+inline constexpr double kMaxCueClippedFraction = 0.001;
 std::string CueLevelProblem(const AudioClip& clip);
+
+// How every spoken cue is levelled, the synthetic ones (cue_maker) and those staff record
+// (kiosk/staff_cues.h) alike, so all of them are heard at one level:
+//   trim leading/trailing silence (below kCueTrimBelowPeakDb re the peak), keep kCueMarginS
+//   either side -> loudness-normalise to kCueLoudnessLufs (BS.1770 K-weighted, ungated,
+//   surface/loudness.h), then lower further if needed so the peak stays at or below kCuePeakDbfs
+//   (never clipped) -> kCueFadeS raised-cosine fades at both ends.
+// EBU R 128's programme target: a cue sits at the level of broadcast speech; the exhibit's strokes
+// at the kiosk's default gains are about -24 LUFS (calibration/texture_levels.h), so cues and
+// textures are heard at a similar level.
+inline constexpr double kCueLoudnessLufs = -23.0;
+inline constexpr double kCuePeakDbfs = -1.0;
+inline constexpr double kCueTrimBelowPeakDb = -40.0;
+inline constexpr double kCueMarginS = 0.02;
+inline constexpr double kCueFadeS = 0.005;
+
+struct ShapedCue {
+  std::vector<float> samples;
+  double source_loudness_lufs = 0.0;  // of the trimmed input, before the gain
+  double gain_db = 0.0;               // applied to it
+};
+// `x` at `rate_hz`, shaped as above. Throws std::runtime_error for silence (an all-zero input).
+ShapedCue ShapeCue(std::vector<float> x, double rate_hz);
 
 // The message cues' names (file name without .wav), in a fixed order.
 const std::vector<std::string>& MessageCueNames();

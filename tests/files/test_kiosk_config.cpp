@@ -95,6 +95,20 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.staff_chord_hold_s == defaults.staff_chord_hold_s);
   CHECK(shipped.transducer_resonance_hz == defaults.transducer_resonance_hz);
   CHECK(shipped.transducer_q == defaults.transducer_q);
+  CHECK(shipped.staff_dir == defaults.staff_dir);
+}
+
+TEST_CASE("the staff folder is /etc/sketch-a-scratch by default, an absolute path or none",
+          "[kiosk]") {
+  CHECK(ParseKioskConfig("", "empty.toml").staff_dir == "/etc/sketch-a-scratch");
+  CHECK(ParseKioskConfig("[paths]\nstaff_dir = \"/srv/museum\"\n", "k.toml").staff_dir ==
+        "/srv/museum");
+  CHECK(ParseKioskConfig("[paths]\nstaff_dir = \"\"\n", "k.toml").staff_dir.empty());
+  // Relative to the unit's working directory (/) is nowhere anyone meant.
+  CHECK_THROWS_WITH(ParseKioskConfig("[paths]\nstaff_dir = \"museum/cues\"\n", "k.toml"),
+                    Catch::Contains("k.toml:2: paths.staff_dir: expected an absolute path"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[paths]\nstaff_dir = 3\n", "k.toml"),
+                    Catch::Contains("paths.staff_dir: expected a string"));
 }
 
 TEST_CASE("the transducer profile: off by default, 0 or 20-1000 Hz, q 0.3-50", "[kiosk]") {

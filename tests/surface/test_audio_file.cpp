@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "support/sound_file.h"
 #include "support/temp_dir.h"
 #include "surface/audio_file.h"
 #include "surface/image_loader.h"
@@ -16,22 +17,7 @@ using namespace sas::surface;
 
 namespace {
 
-// Writes interleaved float frames with the given format; returns the path.
-std::string WriteSound(const std::string& path, int format, int rate, int channels,
-                       const std::vector<float>& interleaved) {
-  SF_INFO info{};
-  info.samplerate = rate;
-  info.channels = channels;
-  info.format = format;
-  SNDFILE* file = sf_open(path.c_str(), SFM_WRITE, &info);
-  REQUIRE(file != nullptr);
-  sf_command(file, SFC_SET_CLIPPING, nullptr, SF_TRUE);
-  const auto frames =
-      static_cast<sf_count_t>(interleaved.size() / static_cast<std::size_t>(channels));
-  REQUIRE(sf_writef_float(file, interleaved.data(), frames) == frames);
-  sf_close(file);
-  return path;
-}
+using sas::test::WriteSound;
 
 std::vector<float> Tone(int rate, double hz, double seconds, double amplitude) {
   std::vector<float> s(static_cast<std::size_t>(rate * seconds));
