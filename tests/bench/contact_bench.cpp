@@ -533,9 +533,9 @@ int ParseArgs(int argc, char** argv, Options& o) {
   app.add_flag("--scene-only", o.scene_only, "just the scene cost figures (profiling)");
   app.add_flag("--front", o.front_only, "just the comparison with the explicit reference");
   app.add_option("--reps", o.reps, "repetitions, best taken (default 3)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000));
   app.add_option("--stress", o.stress, "run the stress test with this many randomised runs")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1L, 1000000000L));
   app.add_option("--update-readme", o.readme,
                  "put the markdown table between this file's bench markers");
   if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;

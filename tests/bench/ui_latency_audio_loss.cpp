@@ -108,7 +108,7 @@ int ParseArgs(int argc, char** argv, Options* o) {
                               "seconds after it is back (default 4)");
   app.add_option("--open-hang-ms", o->open_hang_ms,
                  "how long each open attempt hangs while it is gone, ms (default 3000)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 3600000));
   app.add_option("--note", o->note, "a note for the report's machine line");
   return sas::kiosk::ParseProgramCommandLine(app, argc, argv);
 }

@@ -260,7 +260,7 @@ int ParseArgs(int argc, char** argv, Options& o) {
       ->check(CLI::Range(3, 100000));
   app.add_option("--seed", o.seed, "population seed (default 2026)");
   app.add_option("--reps", o.reps, "repetitions, best taken (default 3)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000));
   app.add_option("--docs", o.docs, "where visitor-bench.md goes (default docs/; -: nowhere)");
   app.add_option("--textures", o.textures, "the kiosk textures (default the source tree's)");
   app.add_flag("--quick", o.quick, "at most 30 strokes, one repetition");

@@ -14,7 +14,7 @@ work=$(mktemp -d /tmp/sas-headless-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
 # No display of any kind: the default must choose the headless visit by itself. No session
-# either (CI, a system service): without XDG_RUNTIME_DIR the display and sound probes once made
+# either (CI, a system service): without XDG_RUNTIME_DIR the display probe (SDL's wayland driver) made
 # libwayland print an error on stderr, which must stay empty on a machine that works as meant
 # (what is missing is the hardware report's business, on stdout).
 unset DISPLAY WAYLAND_DISPLAY WAYLAND_SOCKET SDL_VIDEODRIVER XDG_RUNTIME_DIR

@@ -134,15 +134,15 @@ int main(int argc, char** argv) {
       "The live kiosk (sketch-a-scratch kiosk) with its GPIO token lines read from a "
       "FIFO, for the end-to-end test under Xvfb.",
       "kiosk_gpio_e2e_app"};
-  std::string fifo, config, state_dir;
+  std::string fifo, config_path, state_dir;
   app.add_option("--gpio-fifo", fifo, "FIFO of \"line <offset> falling|rising\" events")
       ->required();
   // The kiosk's own options, handed on as given (RunKiosk parses them again).
-  app.add_option("--config", config, "the kiosk's configuration file");
+  app.add_option("--config", config_path, "the kiosk's configuration file");
   app.add_option("--state-dir", state_dir, "the kiosk's state folder");
   if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   std::vector<std::string> kiosk_args;
-  if (!config.empty()) kiosk_args.insert(kiosk_args.end(), {"--config", config});
+  if (!config_path.empty()) kiosk_args.insert(kiosk_args.end(), {"--config", config_path});
   if (!state_dir.empty()) kiosk_args.insert(kiosk_args.end(), {"--state-dir", state_dir});
   sas::app::KioskBackends backends;
   backends.gpio_events = [fifo](const GpioSwitchConfig& config) {

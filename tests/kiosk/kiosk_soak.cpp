@@ -446,7 +446,7 @@ int main(int argc, char** argv) {
   app.add_option("--rss-limit-kb", options.rss_limit_kb,
                  "allowed resident-memory growth after the warm-up, kB (default 1024; 0: not "
                  "checked)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0L, 100000000L));
   app.add_option("--seed", options.seed, "the visitors' seed");
   app.add_option("--docs", options.docs_dir,
                  "also write the summary and the checks to DIR/soak.md");
