@@ -6,8 +6,8 @@
 //
 // Prints the grid and the relations that fail; with --docs writes DIR/gesture-response.md (the
 // table, every relation checked and which fail) and DIR/gesture-response.png (the plot). Exit 0
-// when written (or printed), 1 on an error; failing relations are reported, not an error (the
-// test tests/kiosk/test_gesture_response.cpp holds the line).
+// when written (or printed), 1 on an error, 2 on a usage error; failing relations are reported,
+// not an error (the test tests/kiosk/test_gesture_response.cpp holds the line).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "calibration/gesture_response.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -148,7 +149,7 @@ int main(int argc, char** argv) {
   app.add_option("--docs", docs, "write gesture-response.md and gesture-response.png here");
   app.add_option("--places", places, "places per stroke, the median taken (default 8)")
       ->check(CLI::Range(1, 50));
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
     const auto surfaces = sas::kiosk::LoadResponseSurfaces(textures);
     std::vector<std::string> names;

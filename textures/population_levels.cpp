@@ -26,6 +26,7 @@
 #include "calibration/texture_levels.h"
 #include "files/kiosk_config.h"
 #include "surface/image_surface.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -209,7 +210,7 @@ int main(int argc, char** argv) {
   app.add_option("--duration-scale", duration_scale,
                  "shorten every stroke by this factor (a quick run; default 1)")
       ->check(CLI::Range(0.1, 1.0));
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
     const auto strokes = sas::kiosk::VisitorPopulation(count, seed, duration_scale);
     const sas::kiosk::KioskConfig defaults =

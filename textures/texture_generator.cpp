@@ -13,7 +13,7 @@
 // generator) seeded per texture, OpenCV runs single-threaded, and PNG compression settings are
 // fixed, so running it again reproduces the committed bytes (tests/surface checks this).
 //
-// Usage: texture_generator <out_dir> [--only <name>] [--size <w> <h>]
+// Usage: texture_generator <out_dir> [--only <name>] [--size <w> <h>] (--help: the options)
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -30,6 +30,7 @@
 
 #include "calibration/texture_levels.h"
 #include "texture_painting.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -136,33 +137,27 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
 }  // namespace
 
 int main(int argc, char** argv) {
-  // An option where the folder belongs (--help, a typo) would otherwise become a folder of that
-  // name with four textures in it.
-  if (argc < 2 || argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: %s <out_dir> [--only <name>] [--size <w> <h>]\n", argv[0]);
-    return 2;
-  }
+  CLI::App app{
+      "Paints the four kiosk textures (picture, true height map, texture.toml) into "
+      "<out_dir>/<name>/ and calibrates their gains.",
+      "texture_generator"};
+  std::string out_dir;
+  std::string only;
+  std::vector<int> size;
+  app.add_option("out_dir", out_dir, "folder to write the textures' folders into")->required();
+  app.add_option("--only", only, "make only this texture (e.g. wooden_board)");
+  app.add_option("--size", size, "picture size in pixels (default 1920 1080)")
+      ->expected(2)
+      ->check(CLI::Range(64, 8192));
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   cv::setNumThreads(1);
   cv::setRNGSeed(1);
-  const std::filesystem::path root = argv[1];
-  std::string only;
+  const std::filesystem::path root = out_dir;
   Canvas canvas;
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--only" && i + 1 < argc) {
-      only = argv[++i];
-    } else if (arg == "--size" && i + 2 < argc) {
-      canvas.width = std::atoi(argv[++i]);
-      canvas.height = std::atoi(argv[++i]);
-      if (canvas.width < 64 || canvas.height < 64 || canvas.width > 8192 || canvas.height > 8192) {
-        std::fprintf(stderr, "size out of range\n");
-        return 2;
-      }
-      canvas.scale = canvas.width / 1920.0;
-    } else {
-      std::fprintf(stderr, "unknown argument '%s'\n", arg.c_str());
-      return 2;
-    }
+  if (size.size() == 2) {
+    canvas.width = size[0];
+    canvas.height = size[1];
+    canvas.scale = canvas.width / 1920.0;
   }
   const std::vector<std::pair<std::string, std::function<TextureOut(const Canvas&)>>> makers = {
       {"bubble_wrap", sas::textures::BubbleWrap},
@@ -182,7 +177,7 @@ int main(int argc, char** argv) {
     std::printf("wrote %s\n", (root / name).string().c_str());
   }
   if (!any) {
-    std::fprintf(stderr, "no texture named '%s'\n", only.c_str());
+    std::fprintf(stderr, "texture_generator: no texture named '%s'\n", only.c_str());
     return 2;
   }
   return 0;

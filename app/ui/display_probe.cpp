@@ -3,7 +3,27 @@
 
 #include <SDL.h>
 
+#include <string>
+
 namespace sas::ui {
+
+void SkipUnreachableWayland() {
+  // SDL_GetHint falls back to the SDL_VIDEODRIVER environment variable.
+  if (SDL_GetHint(SDL_HINT_VIDEODRIVER) != nullptr) return;
+  for (const char* name : {"WAYLAND_DISPLAY", "WAYLAND_SOCKET", "XDG_RUNTIME_DIR"}) {
+    const char* value = SDL_getenv(name);
+    if (value != nullptr && *value != '\0') return;
+  }
+  // Every driver in SDL's own order but wayland: SDL tries a list in the order given, so the
+  // choice is what it would have made (x11, KMSDRM, then the virtual offscreen fallback).
+  std::string drivers;
+  for (int i = 0; i < SDL_GetNumVideoDrivers(); ++i) {
+    const std::string driver = SDL_GetVideoDriver(i);
+    if (driver == "wayland") continue;
+    drivers += (drivers.empty() ? "" : ",") + driver;
+  }
+  SDL_SetHint(SDL_HINT_VIDEODRIVER, drivers.c_str());
+}
 
 bool IsUnrequestedVirtualDriver(const std::string& driver) {
   // SDL 2.26 falls back to its virtual `offscreen` driver when x11, wayland and KMSDRM all fail.
@@ -14,6 +34,7 @@ bool IsUnrequestedVirtualDriver(const std::string& driver) {
 
 DisplayInfo ProbeDisplay() {
   DisplayInfo info;
+  SkipUnreachableWayland();
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
     info.problem = SDL_GetError();
     return info;

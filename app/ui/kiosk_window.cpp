@@ -414,6 +414,7 @@ void KioskWindow::Open() {
   SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "0");
   SDL_SetHint(SDL_HINT_MOUSE_TOUCH_EVENTS, "0");
   SDL_SetHint(SDL_HINT_GRAB_KEYBOARD, m.options.grab_keyboard ? "1" : "0");
+  SkipUnreachableWayland();
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
     throw WindowError(std::string("SDL video: ") + SDL_GetError());
   }

@@ -27,6 +27,7 @@
 
 #include "support/fft.h"
 #include "surface/audio_file.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -291,20 +292,50 @@ int Find(const std::string& mode, const std::string& image, const std::string& v
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string command = argc > 1 ? argv[1] : "";
+  CLI::App app{"Host-side checks of what the appliance VM heard and kept (boot-test.sh).",
+               "appliance_check"};
+  app.require_subcommand(1);
+  std::string in_path, out_path, capture, mode, image, voice_path;
+  double scale = 0.0, t0 = 0.0, t1 = 0.0, t2 = 0.0;
+  std::vector<std::string> cues;
+  CLI::App* voice = app.add_subcommand(
+      "voice", "IN at 48 kHz mono, peak SCALE, 16-bit: writes OUT.s16 (for aplay) and OUT.f32");
+  voice->add_option("in", in_path, "the voice, a WAV")->required();
+  voice->add_option("scale", scale, "peak, full scale 1")->required();
+  voice->add_option("out", out_path, "output path without extension")->required();
+  CLI::App* stroke = app.add_subcommand(
+      "stroke",
+      "the speaker sounds from T0 to T1 s and has decayed between T1 and T2; the "
+      "transducer has energy in 40-400 Hz");
+  stroke->add_option("capture", capture, "float32 stereo 48 kHz capture")->required();
+  stroke->add_option("t0", t0, "stroke start, s")->required();
+  stroke->add_option("t1", t1, "stroke end, s")->required();
+  stroke->add_option("t2", t2, "latest decay, s")->required();
+  CLI::App* cue = app.add_subcommand(
+      "cue",
+      "the speaker between T0 and T1 holds the spoken cue WANTED, clearly more than any "
+      "OTHER");
+  cue->add_option("capture", capture, "float32 stereo 48 kHz capture")->required();
+  cue->add_option("t0", t0, "from, s")->required();
+  cue->add_option("t1", t1, "to, s")->required();
+  cue->add_option("cues", cues, "WANTED.wav, then the OTHER cues")->required();
+  CLI::App* find = app.add_subcommand(
+      "find",
+      "searches IMAGE for stretches of the voice: absent fails if any is found, present "
+      "if none is");
+  find->add_option("mode", mode, "absent or present")
+      ->required()
+      ->check(CLI::IsMember({"absent", "present"}));
+  find->add_option("image", image, "disk image or any file")->required();
+  find->add_option("voice", voice_path, "the voice as float32 (voice's OUT.f32)")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
-    if (command == "voice" && argc == 5) return Voice(argv[2], std::atof(argv[3]), argv[4]);
-    if (command == "stroke" && argc == 6)
-      return Stroke(argv[2], std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]));
-    if (command == "cue" && argc >= 6)
-      return Cue(argv[2], std::atof(argv[3]), std::atof(argv[4]), {argv + 5, argv + argc});
-    if (command == "find" && argc == 5 &&
-        (std::string(argv[2]) == "absent" || std::string(argv[2]) == "present"))
-      return Find(argv[2], argv[3], argv[4]);
+    if (voice->parsed()) return Voice(in_path, scale, out_path);
+    if (stroke->parsed()) return Stroke(capture, t0, t1, t2);
+    if (cue->parsed()) return Cue(capture, t0, t1, cues);
+    return Find(mode, image, voice_path);
   } catch (const std::exception& e) {
     std::printf("FAIL: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: appliance_check voice|stroke|cue|find ...\n");
-  return 2;
 }

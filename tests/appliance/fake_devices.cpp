@@ -10,7 +10,7 @@
 // line "ok <n> <command>" (or "error <n> <why>") is appended to the status file, so the scenario
 // script knows when a stroke is over.
 //
-//   fake_devices <control fifo> <status file>
+//   fake_devices <control fifo> <status file>      (--help: every mode and its arguments)
 // Commands (x, y are fractions of the screen, 0..1; pressure 0..1; tilt in degrees from upright):
 //   pen plug|unplug        board plug|unplug        keyboard plug|unplug
 //   down X Y PRESSURE TILT       pen into proximity at (X, Y) and tip down
@@ -55,6 +55,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "tools/command_line.h"
 
 namespace {
 
@@ -480,26 +482,51 @@ int CaptureWait(const char* path, double from_s, bool loud, double dbfs, double 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 3 && std::string(argv[1]) == "hold") return Hold(argv[2]);
-  if (argc == 8 && std::string(argv[1]) == "capture-wait") {
-    const std::string mode = argv[4];
-    if (mode != "loud" && mode != "quiet") return 2;
-    return CaptureWait(argv[2], std::atof(argv[3]), mode == "loud", std::atof(argv[5]),
-                       std::atof(argv[6]), std::atof(argv[7]));
-  }
-  if (argc != 3) {
-    std::fprintf(
-        stderr,
-        "usage: fake_devices <control fifo> <status file> | hold <file> | capture-wait ...\n");
-    return 2;
+  CLI::App app{
+      "The visitor's devices inside the appliance VM (uinput pen and keyboard, uhid "
+      "MCP2221A), driven by commands on a FIFO; or one of the helper modes below.",
+      "fake_devices"};
+  std::string control_path, status_path;
+  app.add_option("control_fifo", control_path, "FIFO the commands arrive on, one per line");
+  app.add_option("status_file", status_path, "file each command's \"ok N\" or \"error N\" goes to");
+  CLI::App* hold = app.add_subcommand("hold", "read FILE into memory, say so, and sleep");
+  std::string hold_path;
+  hold->add_option("file", hold_path, "the file to hold")->required();
+  CLI::App* wait = app.add_subcommand(
+      "capture-wait",
+      "wait for the first WINDOW_S stretch of the speaker channel from FROM_S on whose RMS is "
+      "above (loud) or below (quiet) DBFS; print its end (capture seconds) or exit 1 after "
+      "TIMEOUT_S");
+  std::string capture_path, mode;
+  double from_s = 0.0, dbfs = 0.0, window_s = 0.0, timeout_s = 0.0;
+  wait->add_option("capture", capture_path, "float32 stereo 48 kHz capture arecord writes")
+      ->required();
+  wait->add_option("from_s", from_s, "capture time to start looking at")->required();
+  wait->add_option("mode", mode, "loud or quiet")
+      ->required()
+      ->check(CLI::IsMember({"loud", "quiet"}));
+  wait->add_option("dbfs", dbfs, "RMS threshold, dBFS")->required();
+  wait->add_option("window_s", window_s, "stretch length, s")->required();
+  wait->add_option("timeout_s", timeout_s, "wall-clock time to give up after, s")->required();
+  app.require_subcommand(0, 1);
+  // Without a mode both files are needed (CLI11 cannot say "required unless a subcommand").
+  app.callback([&] {
+    if (app.get_subcommands().empty() && status_path.empty()) {
+      throw CLI::RequiredError(control_path.empty() ? "control_fifo" : "status_file");
+    }
+  });
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
+  if (hold->parsed()) return Hold(hold_path.c_str());
+  if (wait->parsed()) {
+    return CaptureWait(capture_path.c_str(), from_s, mode == "loud", dbfs, window_s, timeout_s);
   }
   Devices devices;
   std::atomic<bool> stop{false};
   std::thread uhid([&] { devices.board().Serve(stop); });
-  std::FILE* status = std::fopen(argv[2], "a");
+  std::FILE* status = std::fopen(status_path.c_str(), "a");
   if (status == nullptr) return 1;
   // Held open for reading and writing: a writer that comes and goes never ends our reads.
-  const int control = open(argv[1], O_RDWR | O_CLOEXEC);
+  const int control = open(control_path.c_str(), O_RDWR | O_CLOEXEC);
   if (control < 0) return 1;
   std::FILE* in = fdopen(control, "r");
   char line[512];

@@ -55,6 +55,7 @@
 #include "synth/hunt_crossley_closed_form.h"
 #include "synth/scene.h"
 #include "tools/builtin_profiles.h"
+#include "tools/command_line.h"
 #include "tools/render_command.h"
 
 namespace {
@@ -519,51 +520,27 @@ double RingDownRatio(const synth::MaterialParams& material, double* first_ns, do
   return *last_ns / *first_ns;
 }
 
-Options ParseArgs(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--out") {
-      o.out_dir = value();
-    } else if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--scene-only") {
-      o.scene_only = true;
-    } else if (a == "--front") {
-      o.front_only = true;
-    } else if (a == "--reps") {
-      o.reps = std::max(1, std::atoi(value().c_str()));
-    } else if (a == "--stress") {
-      o.stress = std::atol(value().c_str());
-      if (o.stress <= 0) {
-        std::fprintf(stderr, "--stress needs a positive count\n");
-        std::exit(2);
-      }
-    } else if (a == "--docs") {
-      o.docs = value();
-    } else if (a == "--update-readme") {
-      o.readme = value();
-    } else if (a == "--help" || a == "-h") {
-      std::printf(
-          "usage: contact_bench [--out DIR] [--docs DIR|-] [--quick] [--scene-only] [--front] "
-          "[--reps N] "
-          "[--stress N] "
-          "[--update-readme docs/engineering.md]\n");
-      std::exit(0);
-    } else {
-      std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
-      std::exit(2);
-    }
-  }
+// -1 when the bench should run, else the exit code (--help, a usage error).
+int ParseArgs(int argc, char** argv, Options& o) {
+  CLI::App app{
+      "Contact schemes: run time against error, the kiosk scene's cost, the idle scene, "
+      "the denormal ring-down, the explicit reference; --stress N the long stress test.",
+      "contact_bench"};
+  app.add_option("--out", o.out_dir,
+                 "folder for the CSV, PNG and markdown (default <build>/bench-results)");
+  app.add_option("--docs", o.docs, "where contact-bench.{md,png} go (default docs/; -: nowhere)");
+  app.add_flag("--quick", o.quick, "fewer oversamplings, phases and repetitions");
+  app.add_flag("--scene-only", o.scene_only, "just the scene cost figures (profiling)");
+  app.add_flag("--front", o.front_only, "just the comparison with the explicit reference");
+  app.add_option("--reps", o.reps, "repetitions, best taken (default 3)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--stress", o.stress, "run the stress test with this many randomised runs")
+      ->check(CLI::Range(1L, 1000000000L));
+  app.add_option("--update-readme", o.readme,
+                 "put the markdown table between this file's bench markers");
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   if (o.quick) o.reps = std::min(o.reps, 1);
-  return o;
+  return -1;
 }
 
 // ---------------------------------------------------------------- the sweeps
@@ -1032,7 +1009,8 @@ int RunFrontOnly(const Options& opt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options opt = ParseArgs(argc, argv);
+  Options opt;
+  if (const int code = ParseArgs(argc, argv, opt); code >= 0) return code;
   if (opt.stress > 0) return RunStress(opt.stress);
   if (opt.front_only) return RunFrontOnly(opt);
   const auto bench_start = Clock::now();

@@ -16,6 +16,7 @@
 #include "../surface/ridge_metrics.h"
 #include "surface/image_surface.h"
 #include "surface/texture_set.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -62,20 +63,11 @@ void WriteDocs(const std::string& dir, double seconds, double cpu_seconds,
 
 int main(int argc, char** argv) {
   std::string root = SAS_TEXTURES_DIR, docs;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--docs" && i + 1 < argc) {
-      docs = argv[++i];
-    } else if (arg == "--help") {
-      std::printf("usage: surface_bench [--docs DIR] [textures_dir]\n");
-      return 0;
-    } else if (!arg.empty() && arg[0] == '-') {
-      std::fprintf(stderr, "surface_bench: unknown option %s\n", arg.c_str());
-      return 2;
-    } else {
-      root = arg;
-    }
-  }
+  CLI::App app{"Loads the four kiosk textures and derives their height fields: time and accuracy.",
+               "surface_bench"};
+  app.add_option("--docs", docs, "also write the figures as DIR/surface-bench.md");
+  app.add_option("textures_dir", root, "the textures (default: the source tree's textures/)");
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   const std::vector<std::string> names = {"bubble_wrap", "broken_glass", "wooden_board",
                                           "cracked_ground"};
   std::vector<std::string> paths;

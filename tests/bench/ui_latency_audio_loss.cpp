@@ -31,6 +31,7 @@
 #include "platform/audio/fake_audio_backend.h"
 #include "platform/common/clock.h"
 #include "platform/log/log.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -90,38 +91,26 @@ struct Options {
   int open_hang_ms = 3000;
 };
 
-// Returns 0 when the options are complete, else the exit status (2, after saying why).
+// -1 when the options are complete, else the exit status (--help, a usage error).
 int ParseArgs(int argc, char** argv, Options* o) {
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i], value = argv[i + 1];
-    if (key == "--config") {
-      o->config = value;
-    } else if (key == "--state-dir") {
-      o->state_dir = value;
-    } else if (key == "--docs") {
-      o->docs = value;
-    } else if (key == "--present-s") {
-      o->present_s = std::atof(value.c_str());
-    } else if (key == "--loss-s") {
-      o->loss_s = std::atof(value.c_str());
-    } else if (key == "--after-s") {
-      o->after_s = std::atof(value.c_str());
-    } else if (key == "--open-hang-ms") {
-      o->open_hang_ms = std::atoi(value.c_str());
-    } else if (key == "--note") {
-      o->note = value;
-    } else {
-      std::fprintf(stderr, "ui_latency_audio_loss: unknown option %s\n", key.c_str());
-      return 2;
-    }
-  }
-  if (o->config.empty() || o->state_dir.empty() || o->docs.empty()) {
-    std::fprintf(stderr,
-                 "usage: ui_latency_audio_loss --config FILE --state-dir DIR --docs FILE "
-                 "[--present-s S] [--loss-s S] [--after-s S] [--open-hang-ms MS] [--note TEXT]\n");
-    return 2;
-  }
-  return 0;
+  CLI::App app{
+      "The live kiosk's UI answer time while the audio device is gone and its opens "
+      "hang; writes the report to --docs.",
+      "ui_latency_audio_loss"};
+  app.add_option("--config", o->config, "the kiosk's configuration file")->required();
+  app.add_option("--state-dir", o->state_dir, "the kiosk's state folder")->required();
+  app.add_option("--docs", o->docs, "the report (markdown) to write")->required();
+  sas::kiosk::AddNumberOption(app, "--present-s", o->present_s, 0.0, 3600.0,
+                              "seconds with the device present first (default 3)");
+  sas::kiosk::AddNumberOption(app, "--loss-s", o->loss_s, 0.0, 3600.0,
+                              "seconds the device is gone (default 10)");
+  sas::kiosk::AddNumberOption(app, "--after-s", o->after_s, 0.0, 3600.0,
+                              "seconds after it is back (default 4)");
+  app.add_option("--open-hang-ms", o->open_hang_ms,
+                 "how long each open attempt hangs while it is gone, ms (default 3000)")
+      ->check(CLI::Range(0, 3600000));
+  app.add_option("--note", o->note, "a note for the report's machine line");
+  return sas::kiosk::ParseProgramCommandLine(app, argc, argv);
 }
 
 // When the device went away and came back, and how many opens had been tried by then.
@@ -260,7 +249,7 @@ std::string Report(const Options& opt, const Phases& p, bool holds, const LossTi
 
 int main(int argc, char** argv) {
   Options opt;
-  if (const int usage = ParseArgs(argc, argv, &opt); usage != 0) return usage;
+  if (const int code = ParseArgs(argc, argv, &opt); code >= 0) return code;
   std::vector<Pass> passes;
   LossTimes loss;
   const int code = RunKioskThroughLoss(opt, &passes, &loss);

@@ -48,6 +48,7 @@
 #include "surface/texture_set.h"
 #include "synth/scene.h"
 #include "tools/builtin_profiles.h"
+#include "tools/command_line.h"
 #include "tools/render_command.h"
 
 namespace {
@@ -249,49 +250,31 @@ struct Options {
   std::string only;  // --texture: one texture's key (its folder name), for profiling
 };
 
-Options ParseArgs(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--strokes") {
-      o.strokes = std::max(3, std::atoi(value().c_str()));
-    } else if (a == "--seed") {
-      o.seed = static_cast<unsigned>(std::strtoul(value().c_str(), nullptr, 10));
-    } else if (a == "--reps") {
-      o.reps = std::max(1, std::atoi(value().c_str()));
-    } else if (a == "--docs") {
-      o.docs = value();
-    } else if (a == "--textures") {
-      o.textures = value();
-    } else if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--texture") {
-      o.only = value();
-    } else if (a == "--cost-only") {
-      o.stats = false;
-    } else if (a == "--help" || a == "-h") {
-      std::printf(
-          "usage: visitor_bench [--strokes N] [--seed S] [--reps N] [--docs DIR|-] "
-          "[--textures DIR] [--quick] [--cost-only] [--texture KEY]\n");
-      std::exit(0);
-    } else {
-      std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
-      std::exit(2);
-    }
-  }
+// -1 when the bench should run, else the exit code (--help, a usage error).
+int ParseArgs(int argc, char** argv, Options& o) {
+  CLI::App app{
+      "What visitors cost: the seeded visitor-stroke population on the four kiosk "
+      "textures through synth::Scene.",
+      "visitor_bench"};
+  app.add_option("--strokes", o.strokes, "population size (default 200)")
+      ->check(CLI::Range(3, 100000));
+  app.add_option("--seed", o.seed, "population seed (default 2026)");
+  app.add_option("--reps", o.reps, "repetitions, best taken (default 3)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--docs", o.docs, "where visitor-bench.md goes (default docs/; -: nowhere)");
+  app.add_option("--textures", o.textures, "the kiosk textures (default the source tree's)");
+  app.add_flag("--quick", o.quick, "at most 30 strokes, one repetition");
+  app.add_option("--texture", o.only, "play this texture only (its folder name; profiling)");
+  bool cost_only = false;
+  app.add_flag("--cost-only", cost_only, "time without counting (profiling)");
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
+  o.stats = !cost_only;
   if (!o.only.empty()) o.docs = "-";  // one texture is not the benchmark's page
   if (o.quick) {
     o.strokes = std::min(o.strokes, 30);
     o.reps = 1;
   }
-  return o;
+  return -1;
 }
 
 // The four kiosk textures as the kiosk loads them: picture-derived field, material, output gains.
@@ -454,7 +437,8 @@ std::string VisitorMarkdown(const Options& opt, const std::vector<Summary>& summ
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options opt = ParseArgs(argc, argv);
+  Options opt;
+  if (const int code = ParseArgs(argc, argv, opt); code >= 0) return code;
   const auto population = kiosk::VisitorPopulation(opt.strokes, opt.seed);
   const std::vector<Texture> textures = LoadKioskTextures(opt.textures, opt.only);
   if (textures.empty()) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dent_difference.h"
+#include "tools/command_line.h"
 #include "ui/deformation_field.h"
 #include "ui/picture_io.h"
 
@@ -78,11 +79,13 @@ std::map<std::string, std::string> Fields(const std::string& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: headless_check <output folder>\n");
-    return 2;
-  }
-  const std::string dir = argv[1];
+  CLI::App app{
+      "Checks what the headless default wrote: every stroke's WAV and PNG, the voice's "
+      "sound image, the pop, the idle reset.",
+      "headless_check"};
+  std::string dir;
+  app.add_option("folder", dir, "the headless run's output folder")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   std::ifstream visit(dir + "/visit.txt");
   if (!visit) {
     Fail("no visit.txt in " + dir);

@@ -37,6 +37,7 @@
 
 #include "dent_difference.h"
 #include "surface/audio_file.h"
+#include "tools/command_line.h"
 #include "ui/picture_io.h"
 
 namespace {
@@ -288,29 +289,66 @@ int Amber(const std::string& shot_path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string command = argc > 1 ? argv[1] : "";
+  CLI::App app{"Helpers for the kiosk's end-to-end test under Xvfb (kiosk_xvfb_e2e.sh).",
+               "kiosk_e2e_tool"};
+  app.require_subcommand(1);
+  std::string shot, picture, in, out, speech, trigger, out_fifo, out_raw, in_fifo;
+  std::vector<std::string> files;
+  long down = 0, up = 0;
+  int x = 0, y = 0;
+  CLI::App* pace = app.add_subcommand(
+      "pace",
+      "real-time pacing of ALSA's file plugin: plays OUT_FIFO into OUT.raw, captures "
+      "SPEECH.f32 into IN_FIFO once TRIGGER exists");
+  pace->add_option("out_fifo", out_fifo, "the kiosk's playback FIFO")->required();
+  pace->add_option("out_raw", out_raw, "where the played stream is appended")->required();
+  pace->add_option("in_fifo", in_fifo, "the kiosk's capture FIFO")->required();
+  pace->add_option("speech", speech, "float32 mono 48 kHz speech")->required();
+  pace->add_option("trigger", trigger, "file whose existence starts the speech")->required();
+  CLI::App* speech_cmd =
+      app.add_subcommand("speech", "a WAV as float32 mono 48 kHz at a -6 dBFS peak");
+  speech_cmd->add_option("in", in, "the WAV")->required();
+  speech_cmd->add_option("out", out, "the .f32 to write")->required();
+  CLI::App* audio = app.add_subcommand(
+      "audio", "the played stream between byte offsets DOWN and UP is audible, its end decayed");
+  audio->add_option("raw", in, "float32 stereo stream")->required();
+  audio->add_option("down", down, "byte offset of the pen down")->required();
+  audio->add_option("up", up, "byte offset of the pen up")->required();
+  CLI::App* matches = app.add_subcommand(
+      "matches", "the screenshot shows one of the PICTUREs fitted to the screen");
+  matches->add_option("shot", shot, "the screenshot (PNG)")->required();
+  matches->add_option("pictures", files, "the pictures")->required();
+  CLI::App* dent = app.add_subcommand("dent", "the dent at (X, Y) and the picture elsewhere");
+  dent->add_option("shot", shot, "the screenshot (PNG)")->required();
+  dent->add_option("picture", picture, "the picture")->required();
+  dent->add_option("x", x, "dent centre, px")->required();
+  dent->add_option("y", y, "dent centre, px")->required();
+  CLI::App* voice = app.add_subcommand(
+      "voice", "the screenshot is a sound image: grey, silent rows mid-grey, some carrying sound");
+  voice->add_option("shot", shot, "the screenshot (PNG)")->required();
+  CLI::App* find =
+      app.add_subcommand("find", "exit 1 when any FILE contains a stretch of the speech samples");
+  find->add_option("speech", speech, "float32 speech samples")->required();
+  find->add_option("files", files, "the files to search");
+  CLI::App* amber =
+      app.add_subcommand("amber", "prints how many pixels have the staff panel's warning amber");
+  amber->add_option("shot", shot, "the screenshot (PNG)")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
-    if (command == "speech" && argc == 4) return Speech(argv[2], argv[3]);
-    if (command == "audio" && argc == 5)
-      return Audio(argv[2], std::atol(argv[3]), std::atol(argv[4]));
-    if (command == "matches" && argc >= 4) return Matches(argv[2], {argv + 3, argv + argc});
-    if (command == "dent" && argc == 6)
-      return Dent(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]));
-    if (command == "voice" && argc == 3) return Voice(argv[2]);
-    if (command == "find" && argc >= 3) return Find(argv[2], {argv + 3, argv + argc});
-    if (command == "amber" && argc == 3) return Amber(argv[2]);
+    if (speech_cmd->parsed()) return Speech(in, out);
+    if (audio->parsed()) return Audio(in, down, up);
+    if (matches->parsed()) return Matches(shot, files);
+    if (dent->parsed()) return Dent(shot, picture, x, y);
+    if (voice->parsed()) return Voice(shot);
+    if (find->parsed()) return Find(speech, files);
+    if (amber->parsed()) return Amber(shot);
   } catch (const std::exception& e) {
     std::printf("FAIL: %s\n", e.what());
     return 1;
   }
-  if (command != "pace" || argc != 7) {
-    std::fprintf(stderr,
-                 "usage: kiosk_e2e_tool pace|speech|audio|matches|dent|voice|find|amber ...\n");
-    return 2;
-  }
   std::signal(SIGPIPE, SIG_IGN);
-  std::thread playback(Playback, std::string(argv[2]), std::string(argv[3]));
-  std::thread capture(Capture, std::string(argv[4]), std::string(argv[5]), std::string(argv[6]));
+  std::thread playback(Playback, out_fifo, out_raw);
+  std::thread capture(Capture, in_fifo, speech, trigger);
   playback.join();
   capture.join();
   return 0;

@@ -26,6 +26,7 @@
 #include "live_kiosk.h"
 #include "platform/common/clock.h"
 #include "platform/gpio/gpio_switches.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -129,21 +130,20 @@ std::unique_ptr<GpioEventSource> MakeFifoSource(const std::string& path,
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string fifo;
+  CLI::App app{
+      "The live kiosk (sketch-a-scratch kiosk) with its GPIO token lines read from a "
+      "FIFO, for the end-to-end test under Xvfb.",
+      "kiosk_gpio_e2e_app"};
+  std::string fifo, config_path, state_dir;
+  app.add_option("--gpio-fifo", fifo, "FIFO of \"line <offset> falling|rising\" events")
+      ->required();
+  // The kiosk's own options, handed on as given (RunKiosk parses them again).
+  app.add_option("--config", config_path, "the kiosk's configuration file");
+  app.add_option("--state-dir", state_dir, "the kiosk's state folder");
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   std::vector<std::string> kiosk_args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--gpio-fifo" && i + 1 < argc) {
-      fifo = argv[++i];
-    } else {
-      kiosk_args.push_back(arg);
-    }
-  }
-  if (fifo.empty()) {
-    std::fprintf(stderr,
-                 "usage: kiosk_gpio_e2e_app --gpio-fifo PATH [--config FILE] [--state-dir DIR]\n");
-    return 2;
-  }
+  if (!config_path.empty()) kiosk_args.insert(kiosk_args.end(), {"--config", config_path});
+  if (!state_dir.empty()) kiosk_args.insert(kiosk_args.end(), {"--state-dir", state_dir});
   sas::app::KioskBackends backends;
   backends.gpio_events = [fifo](const GpioSwitchConfig& config) {
     return MakeFifoSource(fifo, config);

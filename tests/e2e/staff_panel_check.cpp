@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "sas/version.h"
+#include "tools/command_line.h"
 #include "ui/overlay.h"
 #include "ui/picture_io.h"
 #include "ui/ttf_text.h"
@@ -294,15 +295,20 @@ void CheckButtons(const ImageRgba& shot, const PixelRect& panel) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: staff_panel_check <shot.png> <picture> <config path>\n");
-    return 2;
-  }
+  CLI::App app{
+      "Checks a screenshot of the live kiosk's staff panel: contrast of its text and "
+      "buttons, lines in normal case with the configuration path as given.",
+      "staff_panel_check"};
+  std::string shot_path, picture_path, config_path;
+  app.add_option("shot", shot_path, "the screenshot (PNG)")->required();
+  app.add_option("picture", picture_path, "the picture shown under the panel")->required();
+  app.add_option("config", config_path, "the configuration path given to the kiosk")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
-    const ImageRgba shot = sas::ui::LoadPicture(argv[1]);
+    const ImageRgba shot = sas::ui::LoadPicture(shot_path);
     const int width = shot.width(), height = shot.height();
-    const ImageRgba under = sas::ui::ResizeToCover(sas::ui::LoadPicture(argv[2]), width, height);
-    const std::string config_path = argv[3];
+    const ImageRgba under =
+        sas::ui::ResizeToCover(sas::ui::LoadPicture(picture_path), width, height);
     const PixelRect panel = sas::ui::StaffPanelRect(width, height);
     std::printf("shot %dx%d, panel %d,%d %dx%d\n", width, height, panel.x, panel.y, panel.w,
                 panel.h);

@@ -17,8 +17,10 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "dent_difference.h"
+#include "tools/command_line.h"
 #include "ui/kiosk_window.h"
 #include "ui/picture_io.h"
 #include "ui/texture_view.h"
@@ -51,19 +53,25 @@ double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-int Snapshot(int argc, char** argv) {
-  if (argc < 4) return 2;
+struct Args {
+  std::string picture, out, shot;
+  std::vector<float> drag;  // x0 y0 x1 y1 [pressure]
+  double seconds = -1.0;
+  int x = 0, y = 0;
+};
+
+int Snapshot(const Args& a) {
   const int w = 800, h = 600;
   float x0 = 300, y0 = 300, x1 = 460, y1 = 300, pressure = 1.0f;
-  if (argc >= 8) {
-    x0 = std::stof(argv[4]);
-    y0 = std::stof(argv[5]);
-    x1 = std::stof(argv[6]);
-    y1 = std::stof(argv[7]);
+  if (a.drag.size() >= 4) {
+    x0 = a.drag[0];
+    y0 = a.drag[1];
+    x1 = a.drag[2];
+    y1 = a.drag[3];
   }
-  if (argc >= 9) pressure = std::stof(argv[8]);
+  if (a.drag.size() >= 5) pressure = a.drag[4];
   sas::ui::TextureView view(w, h);
-  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(argv[2], w, h)), 0.0, false);
+  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(a.picture, w, h)), 0.0, false);
   // 60 Hz drag, then the frame at the end of the stroke with the tip still down.
   constexpr int kSteps = 15;
   for (int i = 0; i <= kSteps; ++i) {
@@ -80,23 +88,22 @@ int Snapshot(int argc, char** argv) {
   }
   ImageRgba out;
   sas::ui::ComposeFrame(view.TakeFrame(), out);
-  sas::ui::SavePng(out, argv[3]);
-  std::printf("snapshot %s depth %.2f px drag %.2f,%.2f px\n", argv[3],
+  sas::ui::SavePng(out, a.out);
+  std::printf("snapshot %s depth %.2f px drag %.2f,%.2f px\n", a.out.c_str(),
               view.deformation().depth_px(), view.deformation().drag_x_px(),
               view.deformation().drag_y_px());
   return 0;
 }
 
-int Window(int argc, char** argv) {
-  if (argc < 3) return 2;
-  const double run_s = argc >= 4 ? std::stod(argv[3]) : -1.0;
+int Window(const Args& a) {
+  const double run_s = a.seconds;
   sas::ui::KioskWindowOptions options;
   options.staff_chord.hold_s = 0.3;
   sas::ui::KioskWindow window(options);
   window.Open();
   const int w = window.width_px(), h = window.height_px();
   sas::ui::TextureView view(w, h);
-  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(argv[2], w, h)), Now(), false);
+  view.ShowPicture(std::make_shared<const ImageRgba>(Picture(a.picture, w, h)), Now(), false);
   std::printf("ready %d %d %s %s\n", w, h, window.driver().c_str(), window.renderer_name().c_str());
   std::fflush(stdout);
   const double start = Now();
@@ -151,11 +158,10 @@ int Window(int argc, char** argv) {
   return 0;
 }
 
-int Check(int argc, char** argv) {
-  if (argc < 6) return 2;
-  const ImageRgba shot = sas::ui::LoadPicture(argv[2]);
-  const ImageRgba pic = Picture(argv[3], shot.width(), shot.height());
-  const int cx = std::atoi(argv[4]), cy = std::atoi(argv[5]);
+int Check(const Args& a) {
+  const ImageRgba shot = sas::ui::LoadPicture(a.shot);
+  const ImageRgba pic = Picture(a.picture, shot.width(), shot.height());
+  const int cx = a.x, cy = a.y;
   const auto dent = sas::test::MeasureDent(shot, pic, cx, cy);
   const double near_mean = dent.near_mean, far_mean = dent.far_mean;
   std::printf("near-dent mean difference %.2f, far mean difference %.3f\n", near_mean, far_mean);
@@ -165,15 +171,38 @@ int Check(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"A small program around the ui layer for the end-to-end tests under Xvfb.",
+               "ui_e2e_app"};
+  app.require_subcommand(1);
+  Args a;
+  const std::string picture_help = "a picture file, or checker (a checkerboard with a gradient)";
+  CLI::App* snapshot = app.add_subcommand(
+      "snapshot",
+      "headless: a simulated 0.25 s drag, the frame composed in software while the "
+      "tip is still down, written as PNG");
+  snapshot->add_option("picture", a.picture, picture_help)->required();
+  snapshot->add_option("out", a.out, "the PNG to write")->required();
+  snapshot->add_option("drag", a.drag, "x0 y0 x1 y1 [pressure] (default 300 300 460 300 1)")
+      ->expected(0, 5);
+  CLI::App* window = app.add_subcommand(
+      "window", "full-screen KioskWindow running the real event loop, one line per event");
+  window->add_option("picture", a.picture, picture_help)->required();
+  window->add_option("seconds", a.seconds, "stop after this long (default: never)");
+  CLI::App* check = app.add_subcommand(
+      "check",
+      "exit 0 when the screenshot differs from the picture within the dent radius of "
+      "(x, y) and not far from it");
+  check->add_option("shot", a.shot, "the screenshot (PNG)")->required();
+  check->add_option("picture", a.picture, picture_help)->required();
+  check->add_option("x", a.x, "dent centre, px")->required();
+  check->add_option("y", a.y, "dent centre, px")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
-    const std::string command = argc > 1 ? argv[1] : "";
-    if (command == "snapshot") return Snapshot(argc, argv);
-    if (command == "window") return Window(argc, argv);
-    if (command == "check") return Check(argc, argv);
+    if (snapshot->parsed()) return Snapshot(a);
+    if (window->parsed()) return Window(a);
+    return Check(a);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ui_e2e_app: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: ui_e2e_app snapshot|window|check ...\n");
-  return 2;
 }

@@ -8,7 +8,10 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <string>
 #include <vector>
+
+#include "tools/command_line.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
@@ -27,9 +30,13 @@ void Replay(const std::filesystem::path& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"Replays fuzz inputs through the target's loader without libFuzzer."};
+  std::vector<std::string> paths;
+  app.add_option("paths", paths, "input files or folders (read recursively)")->required();
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   std::size_t count = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::filesystem::path root(argv[i]);
+  for (const std::string& path : paths) {
+    const std::filesystem::path root(path);
     std::vector<std::filesystem::path> files;
     if (std::filesystem::is_directory(root)) {
       for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {

@@ -18,7 +18,7 @@
 //              [--warmup-hours W (min(1, H/4))] [--rss-limit-kb K (1024; 0 = not checked)]
 //              [--docs DIR (also write the summary and the checks to DIR/soak.md)]
 // Exit 0 when every check held (a run cut short by --max-wall-seconds says so and checks what it
-// ran), 1 otherwise.
+// ran), 1 otherwise, 2 on a usage error.
 #include <unistd.h>
 
 #include <algorithm>
@@ -42,6 +42,7 @@
 #include "kiosk/virtual_visit.h"
 #include "platform/audio/audio_input.h"
 #include "platform/log/log.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -430,32 +431,26 @@ class Day {
 
 int main(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--simulated-hours" && has_value) {
-      options.simulated_hours = std::atof(argv[++i]);
-    } else if (arg == "--max-wall-seconds" && has_value) {
-      options.max_wall_s = std::atof(argv[++i]);
-    } else if (arg == "--warmup-hours" && has_value) {
-      options.warmup_hours = std::atof(argv[++i]);
-    } else if (arg == "--rss-limit-kb" && has_value) {
-      options.rss_limit_kb = std::atol(argv[++i]);
-    } else if (arg == "--seed" && has_value) {
-      options.seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
-    } else if (arg == "--docs" && has_value) {
-      options.docs_dir = argv[++i];
-    } else {
-      std::fprintf(stderr,
-                   "usage: kiosk_soak [--simulated-hours H] [--max-wall-seconds S] "
-                   "[--warmup-hours W] [--rss-limit-kb K] [--seed N] [--docs DIR]\n");
-      return 2;
-    }
-  }
-  if (!(options.simulated_hours > 0.0)) {
-    std::fprintf(stderr, "kiosk_soak: --simulated-hours must be > 0\n");
-    return 2;
-  }
+  CLI::App app{
+      "An accelerated simulated day of random visitors through the kiosk engine: no "
+      "NaN, bounded memory, every visit counted.",
+      "kiosk_soak"};
+  sas::kiosk::AddNumberOption(app, "--simulated-hours", options.simulated_hours, 1e-6, 1000.0,
+                              "length of the simulated day, h (default 8)");
+  sas::kiosk::AddNumberOption(app, "--max-wall-seconds", options.max_wall_s, 0.0, 1e9,
+                              "cut the run after this much wall time, checking what ran (0: no "
+                              "limit)");
+  sas::kiosk::AddNumberOption(app, "--warmup-hours", options.warmup_hours, 0.0, 1000.0,
+                              "simulated time before the memory baseline, h (default "
+                              "min(1, H/4))");
+  app.add_option("--rss-limit-kb", options.rss_limit_kb,
+                 "allowed resident-memory growth after the warm-up, kB (default 1024; 0: not "
+                 "checked)")
+      ->check(CLI::Range(0L, 100000000L));
+  app.add_option("--seed", options.seed, "the visitors' seed");
+  app.add_option("--docs", options.docs_dir,
+                 "also write the summary and the checks to DIR/soak.md");
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   char state_template[] = "/tmp/sas-soak-XXXXXX";
   if (mkdtemp(state_template) == nullptr) {
     std::perror("kiosk_soak: mkdtemp");

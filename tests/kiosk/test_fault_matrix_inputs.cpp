@@ -328,6 +328,9 @@ TEST_CASE("fault matrix: command arguments - each bad form exits 2 naming the op
       {"render", &render, {"--out", "x.wav", "--profile"}, "--profile"},
       {"render", &render, {"--out", "x.wav", "--loud"}, "--loud"},
       {"render", &render, {"--out", "x.wav", "stray"}, "stray"},
+      // An unknown option is named even where a required one is missing too (CLI11 alone
+      // would only say that --out is required).
+      {"render", &render, {"--no-such-flag"}, "--no-such-flag"},
       {"impact", &impact, {"--mass", "nan"}, "--mass"},
       {"impact", &impact, {"--k", "1e30"}, "--k"},
       {"impact", &impact, {"--oversample", "-1"}, "--oversample"},
