@@ -395,8 +395,8 @@ class LiveLoop {
                                              p_.config_line,
                                              p_.config.buffer_frames,
                                              p_.config.sample_rate_hz};
-        staff_view_.Build(kiosk::StaffPanelLines(inputs), p_.engine.low_vibration(), p_.view.text(),
-                          width_, height_, now_s);
+        staff_view_.Build(kiosk::StaffPanelLines(inputs), kiosk::StaffButtonCaptions(p_.engine),
+                          p_.engine.low_vibration(), p_.view.text(), width_, height_, now_s);
       }
       staff_overlays = staff_view_.overlays();
     }

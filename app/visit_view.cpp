@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ui/overlay.h"
+#include "ui/palette.h"
 #include "ui/picture_io.h"
 #include "ui/text.h"
 
@@ -121,23 +122,24 @@ void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double n
         attract_ = false;
         break;
       case Kind::kSpeak:
-        // The spoken friendly messages also show on screen (a coloured banner) for a while.
+        // The spoken friendly messages also show on screen (a banner with a coloured edge) for a
+        // while.
         switch (action.cue) {
           case kiosk::Cue::kRecordingTooQuiet:
             message_ = "too_quiet";
-            message_color_ = {40, 110, 220, 255};
+            message_color_ = ui::kBlue;
             break;
           case kiosk::Cue::kRecordingTooLoud:
             message_ = "too_loud";
-            message_color_ = {240, 140, 30, 255};
+            message_color_ = ui::kAmber;
             break;
           case kiosk::Cue::kRecordingUnavailable:
             message_ = "no_microphone";
-            message_color_ = {120, 120, 120, 255};
+            message_color_ = ui::kGrey;
             break;
           case kiosk::Cue::kVoiceReady:
             message_ = "voice_ready";
-            message_color_ = {40, 160, 80, 255};
+            message_color_ = ui::kGreen;
             break;
           default:
             continue;
@@ -198,6 +200,30 @@ ui::PixelRect VisitView::AddPlate(ui::Overlays& overlays, const std::vector<Plat
   return plate;
 }
 
+ui::PixelRect VisitView::AddRecordingSign(ui::Overlays& overlays, int size_px) {
+  // A red dot in a red ring, the sign on every recorder, and the word beside it, on a dark plate
+  // at the top-left (the level meter has the right edge, the words the middle).
+  const auto word = text_.Available()
+                        ? text_.Render(engine_->strings().Screen("recording_sign"), size_px, true)
+                        : nullptr;
+  const int d = word ? word->h : std::max(16, height_ / 24);
+  if (!sign_ring_ || sign_ring_->w != d) {
+    sign_ring_ = ui::CircleMask(d, std::max(2, d / 12));
+    sign_dot_ = ui::CircleMask(d * 3 / 5);
+  }
+  const int margin = std::max(8, height_ / 40);
+  const int pad = std::max(8, height_ / 60);
+  const int gap = word ? d / 3 : 0;
+  const ui::PixelRect plate{margin, margin, 2 * pad + d + gap + (word ? word->w : 0), 2 * pad + d};
+  overlays.push_back({plate, ui::kPlate});
+  const int x = plate.x + pad, y = plate.y + pad;
+  overlays.push_back({{x, y, d, d}, ui::kRed, sign_ring_});
+  const int inset = (d - sign_dot_->w) / 2;
+  overlays.push_back({{x + inset, y + inset, sign_dot_->w, sign_dot_->w}, ui::kRed, sign_dot_});
+  if (word) overlays.push_back({{x + d + gap, y, word->w, word->h}, ui::kInk, word});
+  return word ? plate : ui::PixelRect{};
+}
+
 bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_extra) {
   SyncBubbles(now_s);
   ui::Overlays overlays;
@@ -215,10 +241,10 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     const double t = std::floor((now_s - attract_since_s_) * kAttractFps) / kAttractFps;
     const double breath = 0.5 - 0.5 * std::cos(2.0 * 3.14159265358979 * t / 4.0);
     overlays.push_back(
-        {{0, 0, width_, height_}, {0, 0, 0, static_cast<std::uint8_t>(40 + 70 * breath)}});
+        {{0, 0, width_, height_}, ui::WithAlpha(ui::kVeil, static_cast<int>(40 + 70 * breath))});
     const int thickness = 6 + static_cast<int>(10 * breath);
     ui::AddFrame(overlays, {0, 0, width_, height_}, thickness,
-                 {255, 255, 255, static_cast<std::uint8_t>(60 + 100 * breath)});
+                 ui::WithAlpha(ui::kInk, static_cast<int>(60 + 100 * breath)));
     if (staff_panel_open) {
       // The panel covers the middle: no invitation under its lines.
     } else if (ttf) {
@@ -234,7 +260,7 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
       const int scale = std::max(2, width_ / 320);
       const char* invite = "TOUCH THE PICTURE WITH THE PEN";
       ui::AddText(overlays, (width_ - ui::TextWidth(invite, scale)) / 2, height_ / 2 - 4 * scale,
-                  scale, invite, {255, 255, 255, static_cast<std::uint8_t>(150 + 100 * breath)});
+                  scale, invite, ui::WithAlpha(ui::kInk, static_cast<int>(150 + 100 * breath)));
     }
   }
   if (session.mode() == kiosk::SessionMode::kCountdown) {
@@ -250,7 +276,8 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
       plates_.push_back(AddPlate(overlays, lines, width_ / 2, height_ / 2));
     }
   } else if (session.mode() == kiosk::SessionMode::kRecording) {
-    ui::AddRecordingDot(overlays, width_, height_);
+    const ui::PixelRect sign = AddRecordingSign(overlays, body_px);
+    if (!sign.empty()) plates_.push_back(sign);
     ui::AddLevelMeter(overlays, width_, height_, engine_->mic_level());
     if (ttf) {
       plates_.push_back(
@@ -261,19 +288,21 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     }
   }
   if (!message_.empty() && now_s < message_until_s_) {
+    // A dark band across the bottom with an edge in the message's colour (green: the voice is
+    // ready, blue: louder, amber: too loud), the words on it: seen at a glance, and a small
+    // accent instead of a saturated band over a sixth of the picture.
     const int banner_h = std::max(24, height_ / 8);
+    const int edge_h = std::max(3, height_ / 135);
+    overlays.push_back({{0, height_ - banner_h, width_, banner_h}, ui::kPlate});
+    overlays.push_back({{0, height_ - banner_h, width_, edge_h}, message_color_});
     if (ttf) {
-      // A coloured band for sighted visitors at a glance, the words on their own dark plate.
-      overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
       plates_.push_back(AddPlate(overlays, {{strings.Screen(message_), body_px, true}}, width_ / 2,
-                                 height_ - banner_h / 2));
+                                 height_ - (banner_h - edge_h) / 2));
     } else {
-      overlays.push_back({{0, height_ - banner_h, width_, banner_h}, message_color_});
       const int scale = std::max(2, banner_h / 14);
       const std::string& text = strings.Screen(message_);
       ui::AddText(overlays, (width_ - ui::TextWidth(text, scale)) / 2,
-                  height_ - banner_h + (banner_h - 7 * scale) / 2, scale, text,
-                  {255, 255, 255, 255});
+                  height_ - banner_h + (banner_h - 7 * scale) / 2, scale, text, ui::kInk);
     }
   } else {
     message_.clear();

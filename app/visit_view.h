@@ -1,10 +1,10 @@
 #pragma once
 // What the visitor sees, driven by the kiosk engine: the screen-sized pictures of the four
 // textures and of the voice (its sound image), the TextureView with its cross-fade and tip dent,
-// and the overlays (countdown bar, live level meter, recording dot, friendly messages as a
-// coloured banner, the attract animation, the staff panel backdrop). Shared by the live kiosk and
-// the headless default so both show exactly the same frames (the headless one composes them in
-// software and writes PNGs).
+// and the overlays (countdown bar, live level meter, recording sign, friendly messages as a
+// banner with a coloured edge, the attract animation, the staff panel backdrop). Shared by the live
+// kiosk and the headless default so both show exactly the same frames (the headless one composes
+// them in software and writes PNGs).
 
 #include <cstdint>
 #include <memory>
@@ -13,6 +13,7 @@
 
 #include "kiosk/kiosk_engine.h"
 #include "ui/image_rgba.h"
+#include "ui/palette.h"
 #include "ui/texture_view.h"
 #include "ui/ttf_text.h"
 
@@ -26,9 +27,9 @@ const char* MeterWordKey(float level);
 // The number the countdown shows (3, 2, 1, as the count is spoken; 0 before and at the tone).
 int CountShown(const kiosk::SessionConfig& config, double seconds_left);
 
-// Text is white on a dark plate (never bare on a picture).
-inline constexpr ui::Rgba kPlateColor{12, 12, 12, 235};
-inline constexpr ui::Rgba kTextColor{255, 255, 255, 255};
+// Text is white on a dark plate (never bare on a picture): the palette's (ui/palette.h).
+inline constexpr ui::Rgba kPlateColor = ui::kPlate;
+inline constexpr ui::Rgba kTextColor = ui::kInk;
 
 class VisitView {
  public:
@@ -64,6 +65,9 @@ class VisitView {
   // Lines centred on (centre_x, centre_y) over one dark plate; returns the plate.
   ui::PixelRect AddPlate(ui::Overlays& overlays, const std::vector<PlateLine>& lines, int centre_x,
                          int centre_y);
+  // The recording sign (dot, ring and the word) at the top-left; returns its plate (empty
+  // without the TrueType font, when it has no word to keep at 7:1).
+  ui::PixelRect AddRecordingSign(ui::Overlays& overlays, int size_px);
   // Bubble wrap: the picture with the popped bubbles flattened (paper §5.2.2).
   void SyncBubbles(double now_s);
   std::shared_ptr<const ui::ImageRgba> PoppedPicture() const;
@@ -84,6 +88,7 @@ class VisitView {
   ui::Overlays last_overlays_;
   ui::TextRenderer text_;
   std::vector<ui::PixelRect> plates_;
+  std::shared_ptr<const ui::TextMask> sign_ring_, sign_dot_;  // made once per size
 };
 
 }  // namespace sas::app

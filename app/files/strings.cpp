@@ -62,7 +62,7 @@ const std::vector<std::string>& ScreenKeys() {
   static const std::vector<std::string> keys = {
       "attract_title", "attract_pen",  "attract_token", "attract_rest",   "countdown",
       "recording",     "meter_louder", "meter_good",    "meter_too_loud", "voice_ready",
-      "too_quiet",     "too_loud",     "no_microphone", "voice_surface"};
+      "too_quiet",     "too_loud",     "no_microphone", "voice_surface",  "recording_sign"};
   return keys;
 }
 

@@ -8,10 +8,11 @@
 namespace sas::kiosk {
 
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded) {
-  std::string line = "Config: " + path;
-  if (loaded.problem.empty()) return line;
-  line += loaded.source == ConfigLoadResult::Source::kLastGood ? " bad, using the last good one: "
-                                                               : " not used, defaults: ";
+  std::string line = "Configuration: " + path;
+  if (loaded.problem.empty()) return line + " (accepted)";
+  line += loaded.source == ConfigLoadResult::Source::kLastGood
+              ? " rejected, running on the last good copy: "
+              : " rejected, running on the built-in defaults: ";
   return line + loaded.problem;
 }
 

@@ -37,8 +37,8 @@
 namespace sas::kiosk {
 
 // The staff panel's and the journal's line about the configuration file that was (or was not)
-// used at start: "Config: <path>" when it loaded, else which fallback is in use and the problem
-// ("<file>:<line>: <key>: <what>").
+// used at start: "Configuration: <path> (accepted)" when it loaded, else "... rejected, running
+// on the last good copy | the built-in defaults: <file>:<line>: <key>: <what>".
 std::string ConfigStatusLine(const std::string& path, const ConfigLoadResult& loaded);
 
 // Puts what happened at start on the board, so the staff panel lists it next to the devices (and

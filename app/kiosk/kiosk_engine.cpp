@@ -385,18 +385,22 @@ surface::SoundImageOptions VoiceImageOptions(double rate_hz, double max_duration
 
 RecordingOutcome KioskEngine::AcceptRecording(std::int64_t /*now_ns*/,
                                               std::span<const float> samples) {
-  const surface::SoundImageOptions image = VoiceImageOptions(
-      options_.config.sample_rate_hz, options_.config.record_max_duration_s, samples.size());
   // The sound image is the recording row by row, and the field is that image as heights: both
   // are the visitor's voice, so they are made (and released, zeroed) in memory a core dump
-  // leaves out. They are constructed in place, never assigned (height_field.h).
+  // leaves out. They are constructed in place, never assigned (height_field.h). So is the
+  // speech cut out of the take: the picture shows the voice, not the wait before it or the
+  // pauses in it (a late start left most of the rows flat grey).
   std::pmr::memory_resource* memory = platform::NoDumpMemory();
   RecordingOutcome outcome = RecordingOutcome::kOk;
   try {
+    const std::pmr::vector<float> speech =
+        surface::TrimToSpeech(samples, options_.config.sample_rate_hz, {}, memory);
+    const surface::SoundImageOptions image = VoiceImageOptions(
+        options_.config.sample_rate_hz, options_.config.record_max_duration_s, speech.size());
     surface::HeightField field = surface::SoundToHeightField(
-        samples, image, kVoiceReliefMm, surface::DisplayGeometry{}.pixel_pitch_mm(), memory);
+        speech, image, kVoiceReliefMm, surface::DisplayGeometry{}.pixel_pitch_mm(), memory);
     voice_image_.reset();
-    voice_image_.emplace(surface::SoundToImage(samples, image, memory));
+    voice_image_.emplace(surface::SoundToImage(speech, image, memory));
     voice_.Store(kVoiceSlot, "voice", std::move(field));
   } catch (const std::invalid_argument&) {
     outcome = RecordingOutcome::kSilent;  // nothing to feel: ask again

@@ -206,8 +206,10 @@ class KioskEngine final {
   StrokeCorrection stroke_correction() const { return stroke_correction_; }
   const StrokeGainMap& stroke_gains() const { return stroke_gains_; }
   // Turns a voice take into the voice surface (headless run, tests: the same path as a
-  // recording). The samples are read in place; the sound image and the height field made from
-  // them live in memory kept out of core dumps (platform::NoDumpMemory()).
+  // recording): its speech (surface::TrimToSpeech: the silence around it cut, long pauses
+  // shortened) becomes the sound image and the height field. The samples are read in place; the
+  // speech, the image and the field live in memory kept out of core dumps
+  // (platform::NoDumpMemory()).
   RecordingOutcome AcceptRecording(std::int64_t now_ns, std::span<const float> samples);
 
  private:

@@ -1,11 +1,12 @@
 #pragma once
 // The staff panel's logic (control thread): what it says and what its buttons do. The panel opens
 // over the picture on the staff chord (Session decides when it is open). It lists the version,
-// every device's status, the audio load, the pen-to-sound latency, the speaker's dose, the switches
-// and tokens, the microphone, the pen, the usage counters and the configuration file, and has one
-// row of buttons: test tone, transducer sweep, low-vibration mode, volume and vibration steps. The
-// drawing (text layout, button rectangles) belongs to the app's staff panel view; nothing here
-// knows pixels beyond the pen's position it reports.
+// every device's status (with the output's xruns, the microphone's level, the tokens), the audio
+// load, the pen-to-sound latency, the pen, the usage counters, the speaker's dose, the
+// configuration in use and the journal's last lines, and has one row of buttons under captions
+// that say what they work on and its state: test tone, transducer sweep, low-vibration mode,
+// volume and vibration steps. The drawing (text layout, button rectangles) belongs to the app's
+// staff panel view; nothing here knows pixels beyond the pen's position it reports.
 
 #include <cstdint>
 #include <optional>
@@ -35,14 +36,23 @@ enum class StaffButton {
 };
 inline constexpr int kStaffButtonCount = static_cast<int>(StaffButton::kCount);
 
-// A button's label; the low-vibration button says whether the mode is on.
+// A button's label: what it does ("Turn on", "+3 dB"); the caption above it says what it works
+// on and the state now.
 const char* StaffButtonLabel(StaffButton button, bool low_vibration);
+
+// A caption over the buttons from `first` to `last`: "Low vibration: off", "Volume: +3 dB".
+struct StaffButtonCaption {
+  StaffButton first, last;
+  std::string text;
+  bool operator==(const StaffButtonCaption&) const = default;
+};
+std::vector<StaffButtonCaption> StaffButtonCaptions(const KioskEngine& engine);
 
 // What the panel reports on, read when its text is rebuilt.
 struct StaffPanelInputs {
   const KioskEngine* engine;
   const platform::AudioOutput* output;
-  const platform::DeviceStatusBoard* board;
+  const platform::DeviceStatusBoard* board;  // its logger's ring: the journal's last lines
   const platform::SwitchInputs* switches;
   const platform::TokenSelector* selector;
   bool record_down;
@@ -53,13 +63,23 @@ struct StaffPanelInputs {
 };
 
 // One line of the panel's text; `warning` lines (the title, a device not ok) stand out.
+// `journal` lines are the journal's last lines, as it has them: the view keeps the newest that
+// fit.
 struct StaffPanelLine {
   std::string text;
   bool warning = false;
+  bool journal = false;
   bool operator==(const StaffPanelLine&) const = default;
 };
 
-// The panel's text, top to bottom.
+// How many of the journal's last lines the text ends with (the board's logger's ring).
+inline constexpr std::size_t kStaffJournalLines = 8;
+
+// The panel's text, top to bottom: the title; one line per device and start-up check (its name,
+// the journal's name, state, backend, message, and the output's xruns, the microphone's level,
+// the tokens and the record button, what is shown); the audio load; pen to sound; the pen; the
+// usage counters; the speaker's Leq; the configuration file (accepted, or which copy runs) and
+// its key values in use; the journal's last lines.
 std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in);
 
 // An equivalent level for the panel: "-20.3 dBFS", "silent" below kSilentLeqDbfs (a visit with no

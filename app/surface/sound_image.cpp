@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "surface/image_surface.h"
 
@@ -28,29 +29,45 @@ float PeakOf(std::span<const float> samples, std::size_t count) {
 // alone: ITU-T P.56). 30 dB is the dynamic range of running speech, peaks to weakest sounds
 // (ANSI S3.5-1997, the Speech Intelligibility Index).
 constexpr double kActiveRangeDb = 30.0;
-double LevelOf(std::span<const float> samples, std::size_t count, float peak, double quantile,
-               double sample_rate_hz) {
-  if (quantile >= 1.0 || !(peak > 1e-9f)) return peak;
-  const std::size_t block =
-      std::max<std::size_t>(1, static_cast<std::size_t>(0.01 * sample_rate_hz));
-  const auto block_power = [&](std::size_t first) {
-    const std::size_t last = std::min(count, first + block);
+
+// The 10 ms blocks of a recording and the power a block must reach to count as active.
+struct BlockGate {
+  std::span<const float> samples;
+  std::size_t count = 0;
+  std::size_t block = 1;
+  double gate = 0.0;
+
+  BlockGate(std::span<const float> s, std::size_t n, double sample_rate_hz)
+      : samples(s),
+        count(n),
+        block(std::max<std::size_t>(1, static_cast<std::size_t>(0.01 * sample_rate_hz))) {
+    double loudest = 0.0;
+    for (std::size_t first = 0; first < count; first += block) {
+      loudest = std::max(loudest, Power(first));
+    }
+    gate = loudest * std::pow(10.0, -kActiveRangeDb / 10.0);
+  }
+  double Power(std::size_t first) const {
+    const std::size_t last = End(first);
     double sum = 0.0;
     for (std::size_t i = first; i < last; ++i) sum += static_cast<double>(samples[i]) * samples[i];
     return sum / static_cast<double>(last - first);
-  };
-  double loudest = 0.0;
-  for (std::size_t first = 0; first < count; first += block) {
-    loudest = std::max(loudest, block_power(first));
   }
-  const double gate = loudest * std::pow(10.0, -kActiveRangeDb / 10.0);
+  std::size_t End(std::size_t first) const { return std::min(count, first + block); }
+  bool Active(std::size_t first) const { return gate > 0.0 && Power(first) >= gate; }
+};
+
+double LevelOf(std::span<const float> samples, std::size_t count, float peak, double quantile,
+               double sample_rate_hz) {
+  if (quantile >= 1.0 || !(peak > 1e-9f)) return peak;
+  const BlockGate blocks(samples, count, sample_rate_hz);
   constexpr std::size_t kBins = 4096;  // the level to 1/4096 of the peak: finer than any screen
   constexpr double kTop = static_cast<double>(kBins - 1);
   std::array<std::size_t, kBins> histogram{};
   std::size_t active = 0;
-  for (std::size_t first = 0; first < count; first += block) {
-    if (block_power(first) < gate) continue;
-    const std::size_t last = std::min(count, first + block);
+  for (std::size_t first = 0; first < count; first += blocks.block) {
+    if (!blocks.Active(first)) continue;
+    const std::size_t last = blocks.End(first);
     for (std::size_t i = first; i < last; ++i) {
       const double bin = static_cast<double>(std::fabs(samples[i])) / peak * kTop;
       ++histogram[std::min(static_cast<std::size_t>(bin), kBins - 1)];
@@ -113,6 +130,59 @@ bool ParseDouble(std::string_view text, double& value) {
 }
 
 }  // namespace
+
+std::pmr::vector<float> TrimToSpeech(std::span<const float> samples, double sample_rate_hz,
+                                     const SpeechTrimOptions& o,
+                                     std::pmr::memory_resource* memory) {
+  if (!(sample_rate_hz > 0.0) || !(o.margin_s >= 0.0) || !(o.max_pause_s >= 0.0)) {
+    throw std::invalid_argument("TrimToSpeech: options out of range");
+  }
+  std::pmr::vector<float> speech(memory);
+  const BlockGate blocks(samples, samples.size(), sample_rate_hz);
+  // The active stretches as [begin, end) sample ranges, in order.
+  std::vector<std::pair<std::size_t, std::size_t>> active;
+  for (std::size_t first = 0; first < samples.size(); first += blocks.block) {
+    if (!blocks.Active(first)) continue;
+    if (!active.empty() && active.back().second == first) {
+      active.back().second = blocks.End(first);
+    } else {
+      active.push_back({first, blocks.End(first)});
+    }
+  }
+  if (active.empty()) return speech;  // silence: nothing of the voice to show
+  const auto margin = static_cast<std::size_t>(o.margin_s * sample_rate_hz);
+  const auto half_pause = static_cast<std::size_t>(o.max_pause_s * sample_rate_hz / 2.0);
+  // The kept ranges: each stretch with the margin before the first and after the last, and of a
+  // long pause its two ends (the fading of one sound and the onset of the next stay whole).
+  std::vector<std::pair<std::size_t, std::size_t>> kept;
+  std::size_t total = 0;
+  const auto keep = [&](std::size_t begin, std::size_t end) {
+    if (end <= begin) return;
+    if (!kept.empty() && kept.back().second >= begin) {
+      total += end - kept.back().second;
+      kept.back().second = end;
+    } else {
+      kept.push_back({begin, end});
+      total += end - begin;
+    }
+  };
+  keep(active.front().first - std::min(margin, active.front().first), active.front().first);
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    keep(active[i].first, active[i].second);
+    if (i + 1 < active.size()) {
+      const std::size_t gap_end = active[i + 1].first;
+      keep(active[i].second, std::min(gap_end, active[i].second + half_pause));
+      keep(gap_end - std::min(half_pause, gap_end - active[i].second), gap_end);
+    }
+  }
+  keep(active.back().second, std::min(samples.size(), active.back().second + margin));
+  speech.reserve(total);
+  for (const auto& [begin, end] : kept) {
+    speech.insert(speech.end(), samples.begin() + static_cast<std::ptrdiff_t>(begin),
+                  samples.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  return speech;
+}
 
 GrayImage SoundToImage(std::span<const float> samples, const SoundImageOptions& o,
                        std::pmr::memory_resource* memory) {

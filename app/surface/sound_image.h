@@ -51,6 +51,23 @@ struct SoundImageOptions {
   double level_quantile = 1.0;
 };
 
+// The speech of a take, for its picture: the silence before and after it cut (a visitor who
+// starts late would otherwise leave most rows flat grey) and each pause inside it longer than
+// `max_pause_s` shortened to that, its two ends kept. Speech is the 10 ms blocks within 30 dB of
+// the loudest (as for `level_quantile`), with `margin_s` kept before the first and after the
+// last. The result is the voice itself: it comes from `memory` (the kiosk: kept out of core
+// dumps, zeroed when released). Empty when no block is active (silence). Throws
+// std::invalid_argument for options out of range.
+struct SpeechTrimOptions {
+  double margin_s = 0.05;
+  // 0.25 s is the usual shortest silent pause counted in speech research (Goldman-Eisler 1968):
+  // the gaps inside words and between them keep their length, a longer wait is cut down to it.
+  double max_pause_s = 0.25;
+};
+std::pmr::vector<float> TrimToSpeech(
+    std::span<const float> samples, double sample_rate_hz, const SpeechTrimOptions& options = {},
+    std::pmr::memory_resource* memory = std::pmr::get_default_resource());
+
 // Throws std::invalid_argument for options out of range or an empty recording. The image's
 // luminance comes from `memory`: a sound image is the recording itself, row by row, so the kiosk
 // makes the visitor's in memory kept out of core dumps.

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ui/palette.h"
+
 namespace sas::ui {
 namespace {
 
@@ -27,10 +29,10 @@ void AddCountdownBar(Overlays& out, int width, int height, float fraction_left) 
   const int bar_h = Scaled(width, height, 0.03f);
   const int margin = Scaled(width, height, 0.02f);
   const PixelRect track{margin, margin, width - 2 * margin, bar_h};
-  out.push_back({track, {0, 0, 0, 140}});
+  out.push_back({track, WithAlpha(kPlate, 140)});
   const float f = std::clamp(fraction_left, 0.0f, 1.0f);
   const int filled = static_cast<int>(std::lround(static_cast<float>(track.w) * f));
-  if (filled > 0) out.push_back({{track.x, track.y, filled, track.h}, {255, 255, 255, 220}});
+  if (filled > 0) out.push_back({{track.x, track.y, filled, track.h}, WithAlpha(kInk, 220)});
 }
 
 void AddLevelMeter(Overlays& out, int width, int height, float level) {
@@ -42,26 +44,32 @@ void AddLevelMeter(Overlays& out, int width, int height, float level) {
   const int x = width - margin - seg_w;
   const int lit = static_cast<int>(std::lround(std::clamp(level, 0.0f, 1.0f) * kSegments));
   out.push_back({{x - 2, height - margin - seg_h * kSegments - 2, seg_w + 4, seg_h * kSegments + 4},
-                 {0, 0, 0, 140}});
+                 WithAlpha(kPlate, 140)});
   for (int i = 0; i < lit; ++i) {
     const float pos = static_cast<float>(i + 1) / kSegments;
-    const Rgba c = pos > 0.9f   ? Rgba{230, 40, 30, 230}
-                   : pos > 0.7f ? Rgba{240, 200, 40, 230}
-                                : Rgba{60, 200, 80, 230};
+    const Rgba c = WithAlpha(pos > 0.9f ? kRed : pos > 0.7f ? kAmber : kGreen, 230);
     // One-pixel gap between segments so the meter reads as a meter.
     out.push_back({{x, height - margin - (i + 1) * seg_h + 1, seg_w, seg_h - 1}, c});
   }
 }
 
-void AddRecordingDot(Overlays& out, int width, int height) {
-  const int d = Scaled(width, height, 0.04f);
-  const int margin = Scaled(width, height, 0.02f);
-  // A square dot with its corners cut, cheap and recognisable at this size.
-  const int cut = d / 4;
-  const int y = margin + Scaled(width, height, 0.05f);
-  out.push_back({{margin + cut, y, d - 2 * cut, d}, {220, 30, 30, 255}});
-  out.push_back({{margin, y + cut, cut, d - 2 * cut}, {220, 30, 30, 255}});
-  out.push_back({{margin + d - cut, y + cut, cut, d - 2 * cut}, {220, 30, 30, 255}});
+std::shared_ptr<const TextMask> CircleMask(int diameter_px, int ring_px) {
+  auto mask = std::make_shared<TextMask>();
+  mask->w = mask->h = std::max(1, diameter_px);
+  mask->alpha.resize(static_cast<std::size_t>(mask->w) * static_cast<std::size_t>(mask->h));
+  const double outer = mask->w / 2.0;
+  const double inner = ring_px > 0 ? outer - ring_px : -1.0;
+  for (int y = 0; y < mask->h; ++y) {
+    for (int x = 0; x < mask->w; ++x) {
+      // Coverage from the distance to the edges, one pixel wide: a smooth edge at any size.
+      const double r = std::hypot(x + 0.5 - outer, y + 0.5 - outer);
+      const double in_outer = std::clamp(outer - r + 0.5, 0.0, 1.0);
+      const double out_inner = inner < 0.0 ? 1.0 : std::clamp(r - inner + 0.5, 0.0, 1.0);
+      mask->alpha[static_cast<std::size_t>(y * mask->w + x)] =
+          static_cast<std::uint8_t>(std::lround(255.0 * in_outer * out_inner));
+    }
+  }
+  return mask;
 }
 
 PixelRect StaffPanelRect(int width, int height) {
@@ -73,8 +81,8 @@ PixelRect StaffPanelRect(int width, int height) {
 
 void AddStaffPanelFrame(Overlays& out, int width, int height) {
   const PixelRect panel = StaffPanelRect(width, height);
-  out.push_back({panel, {16, 20, 28, 210}});
-  AddFrame(out, panel, Scaled(width, height, 0.006f), {230, 230, 230, 255});
+  out.push_back({panel, kPanel});
+  AddFrame(out, panel, Scaled(width, height, 0.006f), kFrameLine);
 }
 
 void DrawOverlays(const Overlays& overlays, ImageRgba& target) {

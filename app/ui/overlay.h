@@ -1,8 +1,9 @@
 #pragma once
 // Flat overlay shapes drawn over the texture: the recording countdown bar, the live level meter,
-// the recording dot and the staff panel's frame. A shape is a rectangle filled with a
-// colour whose alpha is its coverage; the window draws them with SDL's blended fill and the
-// software compositor with FillRectBlend, so both give the same pixels. Text comes later.
+// the discs and rings of the recording sign and the staff panel's frame. A shape is a rectangle
+// filled with a colour whose alpha is its coverage, or a coverage mask (text, a disc) tinted by
+// it; the window draws them with SDL's blended fill and textures and the software compositor
+// with FillRectBlend, so both give the same pixels. Colours come from ui/palette.h.
 
 #include <cstdint>
 #include <memory>
@@ -14,7 +15,7 @@
 namespace sas::ui {
 
 // A line of text rendered once (ui/ttf_text.h): its coverage per pixel, and the text it shows
-// (tests read what a screen says from it).
+// (tests read what a screen says from it; a shape's mask, CircleMask, has none).
 struct TextMask {
   int w = 0, h = 0;
   std::vector<std::uint8_t> alpha;  // w * h, row by row
@@ -43,8 +44,9 @@ void AddCountdownBar(Overlays& out, int width, int height, float fraction_left);
 // scale (linear in dB in the caller's choice of range); segments above 0.9 are red (clipping).
 void AddLevelMeter(Overlays& out, int width, int height, float level);
 
-// A red dot at the top-left while recording.
-void AddRecordingDot(Overlays& out, int width, int height);
+// A disc `diameter_px` across (ring_px 0), or a ring `ring_px` wide, as a coverage mask with
+// smooth edges (no text): drawn like text, in an OverlayShape's colour.
+std::shared_ptr<const TextMask> CircleMask(int diameter_px, int ring_px = 0);
 
 // The staff panel's backdrop: a translucent dark panel with a light frame over the middle of the
 // screen (contents come with the staff panel's wiring).

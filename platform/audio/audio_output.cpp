@@ -21,6 +21,24 @@ void AudioCallbackCore::Run(float* interleaved, int frames, int channels, bool x
   last_ns_.store(took_ns, std::memory_order_relaxed);
   if (took_ns > max_ns_.load(std::memory_order_relaxed))
     max_ns_.store(took_ns, std::memory_order_relaxed);
+  if (const int warm = warm_up_left_.load(std::memory_order_relaxed); warm > 0) {
+    warm_up_left_.store(warm - 1, std::memory_order_relaxed);
+  } else {
+    // Mean over about 375 callbacks (1 s at 128 frames, 48 kHz); the peak over two windows.
+    constexpr double kMeanWeight = 1.0 / 375.0;
+    const auto took = static_cast<double>(took_ns);
+    mean_state_ns_ =
+        mean_state_ns_ < 0.0 ? took : mean_state_ns_ + (took - mean_state_ns_) * kMeanWeight;
+    mean_ns_.store(static_cast<std::int64_t>(mean_state_ns_), std::memory_order_relaxed);
+    if (++in_window_ > kPeakWindowCallbacks) {
+      last_window_max_ns_.store(window_max_ns_.load(std::memory_order_relaxed),
+                                std::memory_order_relaxed);
+      window_max_ns_.store(0, std::memory_order_relaxed);
+      in_window_ = 1;
+    }
+    if (took_ns > window_max_ns_.load(std::memory_order_relaxed))
+      window_max_ns_.store(took_ns, std::memory_order_relaxed);
+  }
   heartbeat_ns_.store(end_ns, std::memory_order_release);
 }
 
@@ -32,6 +50,9 @@ AudioCallbackStats AudioCallbackCore::Stats() const noexcept {
   s.xruns = xruns_.load(std::memory_order_relaxed);
   s.last_callback_ns = last_ns_.load(std::memory_order_relaxed);
   s.max_callback_ns = max_ns_.load(std::memory_order_relaxed);
+  s.mean_callback_ns = mean_ns_.load(std::memory_order_relaxed);
+  s.recent_max_callback_ns = std::max(window_max_ns_.load(std::memory_order_relaxed),
+                                      last_window_max_ns_.load(std::memory_order_relaxed));
   return s;
 }
 
@@ -49,6 +70,7 @@ SupervisedAudioOutput::~SupervisedAudioOutput() {
 }
 
 bool SupervisedAudioOutput::TryOpen(std::int64_t now_ns, std::string* error) {
+  core_.Opening();
   if (!backend_->Open(config_, core_, error)) return false;
   running_ = true;
   last_callbacks_ = core_.Stats().callbacks;

@@ -50,7 +50,13 @@ struct AudioCallbackStats {
   std::uint64_t frames = 0;
   std::uint64_t xruns = 0;            // underflow/overflow flags reported by the device
   std::int64_t last_callback_ns = 0;  // duration of the latest callback
-  std::int64_t max_callback_ns = 0;
+  std::int64_t max_callback_ns = 0;   // the longest since the start, warm-up included
+  // The load as staff read it: the mean duration (exponential, about the last second of
+  // callbacks) and the longest in the last 10 to 20 s, both without the warm-up callbacks after
+  // each (re)open (kWarmUpCallbacks), whose first touches of the scenes' memory and the device's
+  // start-up took tens of ms and said nothing about the running kiosk.
+  std::int64_t mean_callback_ns = 0;
+  std::int64_t recent_max_callback_ns = 0;
   std::int64_t heartbeat_ns = 0;  // CLOCK_MONOTONIC time of the latest callback (0: never)
 };
 
@@ -62,6 +68,14 @@ class AudioCallbackCore {
   void Run(float* interleaved, int frames, int channels, bool xrun) noexcept;
   AudioCallbackStats Stats() const noexcept;
   void ResetMax() noexcept { max_ns_.store(0, std::memory_order_relaxed); }
+  // A stream is about to be (re)opened (control thread, no callback running): its first
+  // kWarmUpCallbacks are left out of the mean and the recent peak.
+  void Opening() noexcept { warm_up_left_.store(kWarmUpCallbacks, std::memory_order_relaxed); }
+
+  static constexpr int kWarmUpCallbacks = 32;
+  // The recent peak's window, in callbacks (10.9 s at 128 frames and 48 kHz): the peak is the
+  // larger of the current window's and the last one's.
+  static constexpr std::uint32_t kPeakWindowCallbacks = 4096;
 
  private:
   AudioRenderer* renderer_;
@@ -71,6 +85,12 @@ class AudioCallbackCore {
   std::atomic<std::int64_t> last_ns_{0};
   std::atomic<std::int64_t> max_ns_{0};
   std::atomic<std::int64_t> heartbeat_ns_{0};
+  std::atomic<int> warm_up_left_{kWarmUpCallbacks};
+  std::atomic<std::int64_t> mean_ns_{0};
+  std::atomic<std::int64_t> window_max_ns_{0};
+  std::atomic<std::int64_t> last_window_max_ns_{0};
+  double mean_state_ns_ = -1.0;  // audio thread only; < 0 until the first measured callback
+  std::uint32_t in_window_ = 0;  // audio thread only
 };
 
 // One open stream on some device; the supervisor owns it. Open/Close run on the control thread.

@@ -6,10 +6,10 @@
 //    measured where no text can be (above its first line, left of its lines) as a colour laid
 //    over the picture (screen = k + s * picture per channel), which must fit those pixels;
 //  - the panel's two text colours, measured on the fully covered glyph pixels of two lines found
-//    in the shot (the title, amber; "Config: <path>", white), reach 7:1 against the plate laid
-//    over the brightest picture pixel anywhere under the panel's lines without the veil (the
-//    visitor screens' rule, tests/ui/test_visitor_screens.cpp) and against every text-free pixel
-//    around them;
+//    in the shot (the title, amber; "Configuration: <path> (accepted)", white), reach 7:1 against
+//    the plate laid over the brightest picture pixel anywhere under the panel's lines without the
+//    veil (the visitor screens' rule, tests/ui/test_visitor_screens.cpp) and against every
+//    text-free pixel around them;
 //  - each button's label (its brightest pixels) reaches 7:1 against the button (its commonest
 //    colour);
 //  - those two lines are drawn as written, in normal case: the shot matches them rendered in the
@@ -327,7 +327,7 @@ int main(int argc, char** argv) {
          std::string("Sketch-a-Scratch ") + sas::kVersion +
              " - staff panel (the staff chord again closes it)",
          true},
-        {"configuration line", "Config: " + config_path, false},
+        {"configuration line", "Configuration: " + config_path + " (accepted)", false},
     };
     for (const auto& line : lines) {
       CheckLine(shot, text, line, size_px, left, panel, text_bottom, plate_max_l);

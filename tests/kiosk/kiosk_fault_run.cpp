@@ -140,8 +140,8 @@ TEST_CASE(
                        "(using the built-in defaults)") == 1);
   CHECK(LinesSince(log, at_start, "config") == 1);
   const std::string staff_line = kiosk::ConfigStatusLine(config_path, loaded);
-  CHECK(staff_line.find("not used, defaults: " + config_path + ":2: audio.buffer_frames") !=
-        std::string::npos);
+  CHECK(staff_line.find("rejected, running on the built-in defaults: " + config_path +
+                        ":2: audio.buffer_frames") != std::string::npos);
 
   kiosk::KioskEngineOptions engine_options;
   engine_options.config = loaded.config;

@@ -311,9 +311,9 @@ TEST_CASE(
   REQUIRE(log.Recent().size() == 1);
   CHECK_THAT(log.Recent()[0].Text(),
              Catch::StartsWith("warn config: missing: rejected: " + path + ":3:"));
-  CHECK_THAT(
-      sas::kiosk::ConfigStatusLine(path, loaded),
-      Catch::StartsWith("Config: " + path + " bad, using the last good one: " + path + ":3:"));
+  CHECK_THAT(sas::kiosk::ConfigStatusLine(path, loaded),
+             Catch::StartsWith("Configuration: " + path +
+                               " rejected, running on the last good copy: " + path + ":3:"));
 
   // No last good copy: the built-in defaults, and it says so, key included.
   sas::platform::DeviceStatusBoard fresh(log);
@@ -326,7 +326,8 @@ TEST_CASE(
              Catch::StartsWith("rejected: " + path + ":2: session.idle_timeout_s: ") &&
                  Catch::EndsWith("(using the built-in defaults)"));
   CHECK_THAT(sas::kiosk::ConfigStatusLine(path, defaults),
-             Catch::Contains(" not used, defaults: " + path + ":2: session.idle_timeout_s: "));
+             Catch::Contains(" rejected, running on the built-in defaults: " + path +
+                             ":2: session.idle_timeout_s: "));
 }
 
 namespace {

@@ -1,5 +1,6 @@
 // The kiosk engine on the virtual clock (as the headless default runs it): pen timing, the
 // click-free switch, the voice slot's life and the persisted counters, with the real textures.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +10,7 @@
 
 #include "files/material_file.h"
 #include "kiosk/kiosk_engine.h"
+#include "kiosk/synthetic_voice.h"
 #include "platform/audio/audio_input.h"
 #include "sas/version.h"
 #include "support/smaps.h"
@@ -196,6 +198,70 @@ TEST_CASE("engine: a recording becomes the surface, and the idle reset wipes it 
   CHECK(engine.voice_image() == nullptr);
   CHECK_FALSE(engine.surface().voice);
   CHECK(engine.surface().texture == engine.default_texture());
+}
+
+// The share of a sound image's pixel rows that are flat grey: within 2 % of mid-grey across the
+// whole row (silence; a quiet sound still moves some pixel of its row further).
+double FlatGreyShare(const sas::surface::GrayImage& image) {
+  int flat = 0;
+  for (int y = 0; y < image.height; ++y) {
+    float deviation = 0.0f;
+    for (int x = 0; x < image.width; ++x) {
+      deviation = std::max(
+          deviation,
+          std::fabs(image.luminance[static_cast<std::size_t>(y) * image.width + x] - 0.5f));
+    }
+    if (deviation < 0.02f) ++flat;
+  }
+  return static_cast<double>(flat) / std::max(1, image.height);
+}
+
+TEST_CASE(
+    "engine: a visitor who starts late still fills the voice picture: the silence before the "
+    "speech is cut, and the image's rows carry the voice",
+    "[kiosk]") {
+  sas::platform::FakeAudioInput mic;
+  KioskEngine engine(Options());
+  engine.SetRecorder(&mic.recorder());
+  engine.SetAudioRunning(true);
+  // 3 s of a quiet room (-70 dBFS noise), then 2 s of speech: 60 % of the 5 s take is silence.
+  std::vector<float> take(static_cast<std::size_t>(3.0 * kFs));
+  std::uint32_t noise = 1;
+  for (auto& sample : take) {
+    noise = noise * 1664525u + 1013904223u;
+    sample = 3e-4f * (static_cast<float>(noise >> 8) / 8388608.0f - 1.0f);
+  }
+  const auto voice = sas::kiosk::SynthesiseVoice(kFs, 2.0);
+  take.insert(take.end(), voice.begin(), voice.end());
+  std::size_t fed = 0;
+  std::int64_t t = 0;
+  engine.OnRecordButton(t, true);
+  engine.OnRecordButton(t + 1'000'000, false);
+  for (double s = 0.0; s < 5.5 + 5.3; s += kFrames / kFs) {
+    engine.Tick(t);
+    if (mic.recorder().Recording() && fed < take.size()) {
+      const std::size_t n = std::min<std::size_t>(kFrames, take.size() - fed);
+      mic.Feed(take.data() + fed, n);
+      fed += n;
+    }
+    RenderBlocks(engine, 1);
+    t += kBlockNs;
+  }
+  REQUIRE(engine.has_voice());
+  REQUIRE(engine.voice_image() != nullptr);
+  // The whole take made into a picture as it was before the cut: most rows are the wait.
+  const auto whole =
+      sas::surface::SoundToImage(take, sas::kiosk::VoiceImageOptions(kFs, 5.0, take.size()));
+  const double before = FlatGreyShare(whole);
+  const double after = FlatGreyShare(*engine.voice_image());
+  INFO("flat grey rows: whole take " << before << ", the kiosk's picture " << after);
+  CHECK(before >= 0.55);
+  CHECK(after <= 0.1);
+  // The picture still has the screen's height, now in fewer, taller rows.
+  CHECK(engine.voice_image()->height >= 1000);
+  // Still the voice's memory: kept out of core dumps.
+  const auto& luminance = engine.voice_image()->luminance;
+  CHECK(AllDontDump(VmFlagsOf(luminance.data(), luminance.size() * sizeof(float))));
 }
 
 TEST_CASE("engine: strokes per texture survive a restart through the counters file", "[kiosk]") {

@@ -294,7 +294,7 @@ TEST_CASE(
   }
   CHECK(BestCorrelation(speaker, heard) > 0.95);
 
-  // Staff see it on the panel's counters line.
+  // Staff see it on the panel's textures line, beside the count of cues.
   sas::platform::Logger log;
   log.SetEchoToStderr(false);
   sas::platform::DeviceStatusBoard board{log};
@@ -304,9 +304,9 @@ TEST_CASE(
   int counted = 0;
   for (const auto& line : sas::kiosk::StaffPanelLines(
            {&engine, &output, &board, &switches, &selector, false, {}, "", 128, 48000})) {
-    if (line.text.find(", cues ") != std::string::npos) {
+    if (line.text.find(" spoken cues") != std::string::npos) {
       ++counted;
-      CHECK_THAT(line.text, Catch::EndsWith(" (1 staff-recorded)"));
+      CHECK_THAT(line.text, Catch::Contains(" spoken cues (1 staff-recorded)"));
     }
   }
   CHECK(counted == 1);

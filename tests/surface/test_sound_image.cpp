@@ -1,4 +1,5 @@
 // Sound -> image -> profile (paper figure 3) and sound/vibration -> profile.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -225,6 +226,44 @@ TEST_CASE("level_quantile counts the active speech only: pauses around a take le
     }
     CHECK(compared > kBurst / 2);
   }
+}
+
+TEST_CASE(
+    "trimming to speech cuts the silence around a take and shortens only the pauses longer than "
+    "the longest kept",
+    "[surface]") {
+  constexpr double kRate = 48000.0;
+  const auto seconds = [](double s) { return static_cast<std::size_t>(s * kRate); };
+  // 1 s silence, 0.5 s tone, 0.1 s pause, 0.5 s tone, 1.5 s pause, 0.5 s tone, 1 s silence.
+  std::vector<float> take;
+  const auto silence = [&](double s) { take.insert(take.end(), seconds(s), 0.0f); };
+  const auto tone = [&](double s) {
+    const auto t = Sine(seconds(s), 96.0, 0.5);
+    take.insert(take.end(), t.begin(), t.end());
+  };
+  silence(1.0);
+  tone(0.5);
+  silence(0.1);
+  tone(0.5);
+  silence(1.5);
+  tone(0.5);
+  silence(1.0);
+  const SpeechTrimOptions options;  // 50 ms margins, pauses kept up to 0.25 s
+  const auto speech = TrimToSpeech(take, kRate, options);
+  // Kept: the three tones, the short pause whole, the long one cut to 0.25 s, the two margins.
+  const double expected_s = 1.5 + 0.1 + 0.25 + 2 * 0.05;
+  CHECK(static_cast<double>(speech.size()) / kRate == Approx(expected_s).margin(0.005));
+  // The first and last kept samples are the margins' silence, the tone follows right after.
+  CHECK(speech.front() == 0.0f);
+  CHECK(speech.back() == 0.0f);
+  float peak = 0.0f;
+  for (std::size_t i = seconds(0.05); i < seconds(0.1); ++i)
+    peak = std::max(peak, std::fabs(speech[i]));
+  CHECK(peak > 0.4f);
+  // Nothing but silence: nothing to show.
+  CHECK(TrimToSpeech(std::vector<float>(seconds(1.0), 0.0f), kRate).empty());
+  CHECK(TrimToSpeech({}, kRate).empty());
+  CHECK_THROWS_AS(TrimToSpeech(take, 0.0), std::invalid_argument);
 }
 
 TEST_CASE("silence becomes a uniform mid-grey image, not amplified noise", "[surface]") {

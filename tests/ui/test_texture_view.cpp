@@ -166,3 +166,20 @@ TEST_CASE("the countdown bar shrinks with the time left and the level meter grow
   CHECK(clip.back().color.r > 200);  // the top segment is red
   CHECK(clip.back().color.g < 100);
 }
+
+TEST_CASE("the recording sign's shapes: a disc covers its middle, a ring only its edge",
+          "[render]") {
+  const auto disc = sas::ui::CircleMask(40);
+  const auto ring = sas::ui::CircleMask(40, 4);
+  REQUIRE(disc->w == 40);
+  REQUIRE(ring->h == 40);
+  const auto at = [](const sas::ui::TextMask& m, int x, int y) {
+    return m.alpha[static_cast<std::size_t>(y * m.w + x)];
+  };
+  CHECK(at(*disc, 20, 20) == 255);
+  CHECK(at(*disc, 0, 0) == 0);  // a disc, not a square
+  CHECK(at(*ring, 20, 20) == 0);
+  CHECK(at(*ring, 20, 1) == 255);  // inside the 4 px edge
+  CHECK(at(*ring, 0, 0) == 0);
+  CHECK(disc->text.empty());  // a shape: the screens' text readers skip it
+}

@@ -159,7 +159,7 @@ class Screens {
     std::vector<std::string> drawn;
     int tallest = 0;
     for (const auto& o : frame.overlays) {
-      if (o.mask) {
+      if (o.mask && !o.mask->text.empty()) {  // text; a shape's mask (the recording dot) has none
         drawn.push_back(o.mask->text);
         tallest = std::max(tallest, o.mask->h);
       }
@@ -224,7 +224,9 @@ void PlayScreens(Screens& screens) {
   screens.Check({"countdown", {Screen("en", "countdown"), "3"}});
   const auto voice = sas::kiosk::SynthesiseVoice(kFs, 2.5);
   screens.Run(3.3, &voice);  // the tone, then 0.8 s into the take
-  screens.Check({"recording", {Screen("en", "recording"), Screen("en", "meter_good")}});
+  screens.Check(
+      {"recording",
+       {Screen("en", "recording_sign"), Screen("en", "recording"), Screen("en", "meter_good")}});
   screens.Run(3.0, &voice);  // the 3 s take ends: the voice is the surface
   REQUIRE(screens.engine().has_voice());
   screens.Check({"voice", {Screen("en", "voice_ready")}});
