@@ -233,6 +233,7 @@ class KioskEngine final {
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void PassiveStroke(std::int64_t now_ns);
+  void LiftPassiveProbe(std::int64_t now_ns);
   // The probe `choice`'s surface is scratched with when the pen gives no tilt: the voice's scrape
   // or the texture's own (width and style).
   ProbeShape UntiltedProbe(const SurfaceChoice& choice) const;

@@ -4,6 +4,9 @@
 //   speech IN.wav OUT.f32        a WAV (espeak-ng) as float32 mono 48 kHz at a -6 dBFS peak
 //   audio OUT.raw DOWN UP        the played stream (float32 stereo) between byte offsets DOWN
 //                                and UP (the drag) is audible, and its end has decayed to silence
+//   level OUT.raw CH FROM TO MIN MAX   the RMS of channel CH (1 sound, 2 vibration) between byte
+//                                offsets FROM and TO of the played stream, in dBFS, is within
+//                                [MIN, MAX] (exit 1 when not)
 //   matches SHOT.png PICTURE     the screenshot shows PICTURE fitted to the screen (pixel check)
 //   dent SHOT.png PICTURE X Y    the dent at (X, Y) and the picture elsewhere
 //   voice SHOT.png               the screenshot is a sound image: grey, silent rows mid-grey,
@@ -170,6 +173,24 @@ int Audio(const std::string& raw, long down_bytes, long up_bytes) {
   return 0;
 }
 
+int Level(const std::string& raw, int channel, long from_bytes, long to_bytes, double min_db,
+          double max_db) {
+  const auto stereo = ReadF32(raw);
+  const std::size_t frames = stereo.size() / 2;
+  const auto a = static_cast<std::size_t>(std::max(0L, from_bytes) / 8);
+  const auto b = std::min(frames, static_cast<std::size_t>(std::max(0L, to_bytes) / 8));
+  double sum = 0.0;
+  for (std::size_t i = a; i < b; ++i) {
+    const double x = stereo[2 * i + static_cast<std::size_t>(channel == 2)];
+    sum += x * x;
+  }
+  const double db = b > a ? Db(std::sqrt(sum / static_cast<double>(b - a))) : -999.0;
+  std::printf("level: channel %d, %.2f..%.2f s: %.1f dBFS rms (wanted %.0f..%.0f)\n", channel,
+              static_cast<double>(a) / kRateHz, static_cast<double>(b) / kRateHz, db, min_db,
+              max_db);
+  return b > a && db >= min_db && db <= max_db ? 0 : 1;
+}
+
 double MeanDiff(const sas::ui::ImageRgba& a, const sas::ui::ImageRgba& b) {
   double sum = 0.0;
   for (int y = 0; y < a.height(); ++y) {
@@ -293,6 +314,10 @@ int main(int argc, char** argv) {
     if (command == "speech" && argc == 4) return Speech(argv[2], argv[3]);
     if (command == "audio" && argc == 5)
       return Audio(argv[2], std::atol(argv[3]), std::atol(argv[4]));
+    if (command == "level" && argc == 8) {
+      return Level(argv[2], std::atoi(argv[3]), std::atol(argv[4]), std::atol(argv[5]),
+                   std::atof(argv[6]), std::atof(argv[7]));
+    }
     if (command == "matches" && argc >= 4) return Matches(argv[2], {argv + 3, argv + argc});
     if (command == "dent" && argc == 6)
       return Dent(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]));
@@ -305,7 +330,7 @@ int main(int argc, char** argv) {
   }
   if (command != "pace" || argc != 7) {
     std::fprintf(stderr,
-                 "usage: kiosk_e2e_tool pace|speech|audio|matches|dent|voice|find|amber ...\n");
+                 "usage: kiosk_e2e_tool pace|speech|audio|level|matches|dent|voice|find|amber ...\n");
     return 2;
   }
   std::signal(SIGPIPE, SIG_IGN);
