@@ -187,8 +187,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
   // The stroke belongs to the attract screen alone, with nobody at the box: whatever ends it (a
   // key, a token, the record button, the staff panel opening over it) lifts the probe, or the
   // scene would go on scraping at the last place for the whole visit.
-  const bool attract =
-      session_.mode() == SessionMode::kAttract && !session_.staff_panel_open();
+  const bool attract = session_.mode() == SessionMode::kAttract && !session_.staff_panel_open();
   if (!options_.attract_stroke || !attract) {
     passive_started_ns_ = -1;
     LiftPassiveProbe(now_ns);

@@ -329,8 +329,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (command != "pace" || argc != 7) {
-    std::fprintf(stderr,
-                 "usage: kiosk_e2e_tool pace|speech|audio|level|matches|dent|voice|find|amber ...\n");
+    std::fprintf(
+        stderr,
+        "usage: kiosk_e2e_tool pace|speech|audio|level|matches|dent|voice|find|amber ...\n");
     return 2;
   }
   std::signal(SIGPIPE, SIG_IGN);
