@@ -125,6 +125,12 @@ void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double n
         // The spoken friendly messages also show on screen (a banner with a coloured edge) for a
         // while.
         switch (action.cue) {
+          case kiosk::Cue::kTextureName:
+            // A visit's start or a token: the texture's name, as it is spoken.
+            message_ = "texture_name";
+            message_text_ = engine_->TextureName(action.surface.texture);
+            message_color_ = ui::kBlue;
+            break;
           case kiosk::Cue::kRecordingTooQuiet:
             message_ = "too_quiet";
             message_color_ = ui::kBlue;
@@ -144,12 +150,17 @@ void VisitView::Apply(const std::vector<kiosk::SessionAction>& actions, double n
           default:
             continue;
         }
+        if (action.cue != kiosk::Cue::kTextureName) message_text_.clear();
         message_until_s_ = now_s + kMessageS;
         break;
       default:
         break;
     }
   }
+}
+
+const std::string& VisitView::MessageText() const {
+  return message_text_.empty() ? engine_->strings().Screen(message_) : message_text_;
 }
 
 void VisitView::OnStylus(const platform::PenReading& sample) {
@@ -226,6 +237,14 @@ ui::PixelRect VisitView::AddRecordingSign(ui::Overlays& overlays, int size_px) {
 
 bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_extra) {
   SyncBubbles(now_s);
+  if (engine_->language_choices() != language_choices_) {
+    // The language key: the chosen language's own name, as it is spoken.
+    language_choices_ = engine_->language_choices();
+    message_ = "language";
+    message_text_ = engine_->strings().language_name;
+    message_color_ = ui::kFrameLine;
+    message_until_s_ = now_s + kMessageS;
+  }
   ui::Overlays overlays;
   plates_.clear();
   const auto& session = engine_->session();
@@ -248,14 +267,16 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     if (staff_panel_open) {
       // The panel covers the middle: no invitation under its lines.
     } else if (ttf) {
-      plates_.push_back(AddPlate(overlays,
-                                 {{strings.Screen("attract_title"), title_px, true},
-                                  {strings.Screen("attract_pen"), body_px, false}},
-                                 width_ / 2, height_ * 3 / 10));
-      plates_.push_back(AddPlate(overlays,
-                                 {{strings.Screen("attract_token"), body_px, false},
-                                  {strings.Screen("attract_rest"), body_px, false}},
-                                 width_ / 2, height_ * 7 / 10));
+      // The invitation's parts (strings.h): the first as the title, the rest one a line, in the
+      // language the attract cycle is showing.
+      const auto& parts = kiosk::InvitationParts();
+      plates_.push_back(AddPlate(overlays, {{strings.Invitation(parts.front()), title_px, true}},
+                                 width_ / 2, height_ * 1 / 4));
+      std::vector<PlateLine> lines;
+      for (std::size_t i = 1; i < parts.size(); ++i) {
+        lines.push_back({strings.Invitation(parts[i]), body_px, false});
+      }
+      plates_.push_back(AddPlate(overlays, lines, width_ / 2, height_ * 5 / 8));
     } else {
       const int scale = std::max(2, width_ / 320);
       const char* invite = "TOUCH THE PICTURE WITH THE PEN";
@@ -296,11 +317,11 @@ bool VisitView::Advance(double now_s, bool staff_panel_open, ui::Overlays staff_
     overlays.push_back({{0, height_ - banner_h, width_, banner_h}, ui::kPlate});
     overlays.push_back({{0, height_ - banner_h, width_, edge_h}, message_color_});
     if (ttf) {
-      plates_.push_back(AddPlate(overlays, {{strings.Screen(message_), body_px, true}}, width_ / 2,
+      plates_.push_back(AddPlate(overlays, {{MessageText(), body_px, true}}, width_ / 2,
                                  height_ - (banner_h - edge_h) / 2));
     } else {
       const int scale = std::max(2, banner_h / 14);
-      const std::string& text = strings.Screen(message_);
+      const std::string& text = MessageText();
       ui::AddText(overlays, (width_ - ui::TextWidth(text, scale)) / 2,
                   height_ - banner_h + (banner_h - 7 * scale) / 2, scale, text, ui::kInk);
     }

@@ -50,8 +50,11 @@ class VisitView {
     return pictures_.at(static_cast<std::size_t>(texture));
   }
   bool attract() const { return attract_; }
-  // The screen table's key of the message shown ("too_quiet", "voice_ready"...), "" when none.
+  // The screen table's key of the message shown ("too_quiet", "voice_ready"...; "texture_name"
+  // and "language" for the texture's and the chosen language's names), "" when none.
   const std::string& message() const { return message_; }
+  // The message's words (in the current language).
+  const std::string& MessageText() const;
   // The text plates drawn in the last Advance (tests: contrast over what is under them).
   const std::vector<ui::PixelRect>& plates() const { return plates_; }
   ui::TextRenderer& text() { return text_; }
@@ -82,7 +85,9 @@ class VisitView {
   std::shared_ptr<const ui::ImageRgba> current_;
   bool attract_ = true;
   double attract_since_s_ = 0.0;
-  std::string message_;  // "too quiet" ... while shown
+  std::string message_;       // "too quiet" ... while shown
+  std::string message_text_;  // the words when they are no screen key (a name)
+  int language_choices_ = 0;  // the engine's language_choices() last seen
   ui::Rgba message_color_{};
   double message_until_s_ = 0.0;
   ui::Overlays last_overlays_;

@@ -64,10 +64,11 @@ struct KioskConfig {
   // Seconds the pen must rest still on a texture before its description is spoken (0: never).
   double describe_after_rest_s = 2.0;
   // [attract] — while nobody is at the box: the engine strokes the picture itself, gently, in
-  // bursts (the paper's passive exploration), and speaks the invitation every
-  // invitation_interval_s seconds (0: never).
+  // bursts (the paper's passive exploration), and shows and speaks the invitation in each visitor
+  // language in turn, invitation_interval_s seconds of quiet after each (0: no spoken invitation,
+  // the configured language only). At the default every language is heard within a minute.
   bool attract_passive_stroke = true;
-  double invitation_interval_s = 45.0;
+  double invitation_interval_s = 1.0;
   // [language] — what the kiosk says and shows (textures/strings/<code>.toml): the configured
   // language, and the ones the visitor's language key (L) steps through (empty: no choice).
   std::string language = "en";

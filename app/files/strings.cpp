@@ -60,16 +60,38 @@ const std::vector<std::string>& CueKeys() {
 
 const std::vector<std::string>& ScreenKeys() {
   static const std::vector<std::string> keys = {
-      "attract_title", "attract_pen",  "attract_token", "attract_rest",   "countdown",
-      "recording",     "meter_louder", "meter_good",    "meter_too_loud", "voice_ready",
-      "too_quiet",     "too_loud",     "no_microphone", "voice_surface",  "recording_sign"};
+      "countdown",   "recording", "meter_louder", "meter_good",    "meter_too_loud",
+      "voice_ready", "too_quiet", "too_loud",     "no_microphone", "voice_surface", "recording_sign"};
   return keys;
+}
+
+const std::vector<std::string>& InvitationParts() {
+  static const std::vector<std::string> parts = {"scratch", "rest",   "roll",
+                                                 "token",   "record", "language"};
+  return parts;
+}
+
+std::string SpokenInvitation(const std::map<std::string, std::string>& parts) {
+  std::string sentence;
+  for (const auto& part : InvitationParts()) {
+    const auto found = parts.find(part);
+    if (found == parts.end()) continue;
+    if (!sentence.empty()) sentence += ", ";
+    sentence += found->second;
+  }
+  return sentence.empty() ? sentence : sentence + ".";
 }
 
 const std::string& LanguageTable::Screen(const std::string& key) const {
   static const std::string kNone;
   const auto found = screen.find(key);
   return found == screen.end() ? kNone : found->second;
+}
+
+const std::string& LanguageTable::Invitation(const std::string& part) const {
+  static const std::string kNone;
+  const auto found = invitation.find(part);
+  return found == invitation.end() ? kNone : found->second;
 }
 
 std::string LanguageTable::CueText(const std::string& key,
@@ -90,7 +112,8 @@ LanguageTable LoadLanguageTable(const std::string& dir, const std::string& code)
   }
   for (const auto& [key, node] : root) {
     const std::string name(key.str());
-    if (name != "voice" && name != "cues" && name != "screen" && name != "textures") {
+    if (name != "voice" && name != "cues" && name != "screen" && name != "textures" &&
+        name != "invitation") {
       throw std::runtime_error(Where(file, node, name) + "unknown table");
     }
   }
@@ -108,7 +131,12 @@ LanguageTable LoadLanguageTable(const std::string& dir, const std::string& code)
   if (table.words_per_minute < 80 || table.words_per_minute > 450) {
     throw std::runtime_error(file + ": voice.words_per_minute: out of range [80, 450]");
   }
-  table.cues = Strings(root, file, "cues", &CueKeys());
+  // The spoken invitation is made of the [invitation] parts, not written out in [cues].
+  std::vector<std::string> written_cues = CueKeys();
+  std::erase(written_cues, std::string("invitation"));
+  table.cues = Strings(root, file, "cues", &written_cues);
+  table.invitation = Strings(root, file, "invitation", &InvitationParts());
+  table.cues["invitation"] = SpokenInvitation(table.invitation);
   table.screen = Strings(root, file, "screen", &ScreenKeys());
   table.textures = Strings(root, file, "textures", nullptr);
   return table;

@@ -18,18 +18,29 @@ const std::vector<std::string>& KioskLanguages();
 const std::vector<std::string>& CueKeys();
 // On-screen text keys every table has.
 const std::vector<std::string>& ScreenKeys();
+// The invitation's parts every table has ([invitation]), in the order they are spoken: the attract
+// screen shows them one a line, and the spoken invitation (cue "invitation") is made of them, so
+// what a visitor reads and what a blind visitor hears name the same things.
+const std::vector<std::string>& InvitationParts();
+// The spoken invitation from its parts: one sentence, the parts joined by commas. A full stop
+// between them makes espeak-ng pause about 0.3 s longer each time, and every language's
+// invitation must fit in the one-minute attract cycle.
+std::string SpokenInvitation(const std::map<std::string, std::string>& parts);
 
 struct LanguageTable {
   std::string code;           // "en"
   std::string language_name;  // how it names itself: "Deutsch"
   std::string espeak_voice;
   int words_per_minute = 160;
-  std::map<std::string, std::string> cues;      // CueKeys()
-  std::map<std::string, std::string> screen;    // ScreenKeys()
-  std::map<std::string, std::string> textures;  // "<folder>_name", "<folder>_description"
+  std::map<std::string, std::string> cues;        // CueKeys()
+  std::map<std::string, std::string> screen;      // ScreenKeys()
+  std::map<std::string, std::string> invitation;  // InvitationParts()
+  std::map<std::string, std::string> textures;    // "<folder>_name", "<folder>_description"
 
   // The on-screen text for `key` ("" for a key no table has).
   const std::string& Screen(const std::string& key) const;
+  // One part of the invitation ("" for a part no table has).
+  const std::string& Invitation(const std::string& part) const;
   // The sentence a cue file holds: a message (CueKeys()) or "<folder>_name/_description"
   // (from [textures], else `texture_fallback`).
   std::string CueText(const std::string& key, const std::string& texture_fallback = {}) const;

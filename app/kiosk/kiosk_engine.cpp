@@ -50,6 +50,13 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
                         "loudness-matched stroke by stroke (texture.toml, regenerate_textures)");
   }
 
+  std::string cues_dir;
+  if (options_.spoken_cues) {
+    cues_dir = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
+  }
+  cues_ = SpokenCues(options_.config,
+                     options_.strings_dir.empty() ? FindStringsDir() : options_.strings_dir,
+                     std::move(cues_dir), options_.spoken_cues, texture_keys_);
   SessionConfig session;
   session.texture_count = static_cast<int>(textures_.size());
   session.default_texture = default_texture_;
@@ -57,7 +64,8 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   session.countdown_s = options_.countdown_s;
   session.record_max_s = options_.config.record_max_duration_s;
   session.staff_panel_timeout_s = options_.config.staff_panel_timeout_s;
-  session.invitation_interval_s = options_.config.invitation_interval_s;
+  // The attract cycle's slots follow the invitations' lengths (spoken_cues.h).
+  session.attract_slots_s = cues_.AttractSlotsS(options_.config.invitation_interval_s);
   session_ = Session(session);
   if (!options_.counters_path.empty()) {
     // Read under every texture's name, loaded or not: a texture left out today keeps its count.
@@ -77,13 +85,6 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   }
   saved_counters_ = session_.counters();
 
-  std::string cues_dir;
-  if (options_.spoken_cues) {
-    cues_dir = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
-  }
-  cues_ = SpokenCues(options_.config,
-                     options_.strings_dir.empty() ? FindStringsDir() : options_.strings_dir,
-                     std::move(cues_dir), options_.spoken_cues, texture_keys_);
   if (!options_.staff_settings_path.empty()) {
     StaffSettingsLoad staff_load = LoadStaffSettings(options_.staff_settings_path);
     if (!staff_load.report.empty()) platform::DefaultLogger().Warn("staff", staff_load.report);
@@ -179,7 +180,12 @@ void KioskEngine::PlayCue(const CuePick& pick) {
 
 bool KioskEngine::NextLanguage(std::int64_t now_ns) {
   last_now_ns_ = std::max(last_now_ns_, now_ns);
-  if (!cues_.NextLanguage()) return false;
+  // On the attract screen the key chooses the language its texts and invitation are in now: a
+  // visitor who has just read or heard their own language gets it with one press.
+  const bool choose_shown = session_.mode() == SessionMode::kAttract && cues_.attract_cycles();
+  if (!choose_shown && !cues_.NextLanguage()) return false;
+  keep_language_ = true;  // leaving the attract screen this way keeps the choice
+  ++language_choices_;
   session_.OnVisitorActivity(static_cast<double>(now_ns) * 1e-9);
   PlayCue(cues_.ForMessage("language"));  // in the new language: its own name
   return true;
@@ -328,7 +334,15 @@ void KioskEngine::ApplyActions(std::int64_t now_ns, const std::vector<SessionAct
       case Kind::kEnterAttract:
         cues_.ResetLanguage();  // the next visitor hears the configured language
         break;
+      case Kind::kAttractLanguage:
+        cues_.SetAttractLanguage(action.count);  // before its invitation (the next action)
+        break;
       case Kind::kLeaveAttract:
+        // A visit started by anything but the language key is in the configured language (the
+        // attract cycle may have been showing any); the key chose one itself.
+        if (!keep_language_) cues_.ResetLanguage();
+        keep_language_ = false;
+        break;
       case Kind::kStaffPanel:
         break;  // the UI's business
     }

@@ -139,9 +139,11 @@ class KioskEngine final {
   void PlayTransducerSweep();
   bool SaveCounters(std::string* error) const;
   // The visitor's language key: the next of the configured visitor languages, whose own name is
-  // spoken in it. False (nothing changes) when fewer than two are configured. The idle reset
-  // returns to the configured language.
+  // spoken in it; on the attract screen, the language it is showing. False (nothing changes) when
+  // fewer than two are configured. The idle reset returns to the configured language.
   bool NextLanguage(std::int64_t now_ns);
+  // How many times the language key has chosen a language (the view's banner follows it).
+  int language_choices() const { return language_choices_; }
   // While idle with attract_stroke: the virtual probe's position (screen px) and whether its tip is
   // on the picture now, for the view's dent.
   std::optional<platform::PenReading> passive_pen() const {
@@ -236,6 +238,7 @@ class KioskEngine final {
   void FinishRecording(std::int64_t now_ns);
   void WipeVoice();
   void PassiveStroke(std::int64_t now_ns);
+  void LiftPassiveProbe(std::int64_t now_ns);
   // The probe `choice`'s surface is scratched with when the pen gives no tilt: the voice's scrape
   // or the texture's own (width and style).
   ProbeShape UntiltedProbe(const SurfaceChoice& choice) const;
@@ -274,6 +277,8 @@ class KioskEngine final {
   double ambient_gain_db_ = 0.0;
   double ambient_gain_applied_db_ = 0.0;  // what the prepared scenes were given
   SpokenCues cues_;
+  bool keep_language_ = false;  // the language key ended the attract screen
+  int language_choices_ = 0;
   std::function<void(const CueEvent&)> cue_observer_;
   // Passive stroke (attract): where the virtual probe is and when its bursts started/ended.
   bool passive_down_ = false;

@@ -173,10 +173,24 @@ void KioskEngine::WatchPenRest(const platform::PenReading& pen) {
   }
 }
 
+void KioskEngine::LiftPassiveProbe(std::int64_t now_ns) {
+  if (!passive_down_) return;
+  passive_down_ = false;
+  passive_quiet_since_ns_ = now_ns;
+  synth::ProbeCommand lift = last_passive_command_;
+  lift.tip_down = false;
+  lift.velocity_mps = 0.0;
+  player_->control().Probe(now_ns, lift);
+}
+
 void KioskEngine::PassiveStroke(std::int64_t now_ns) {
-  const bool attract = session_.mode() == SessionMode::kAttract;
+  // The stroke belongs to the attract screen alone, with nobody at the box: whatever ends it (a
+  // key, a token, the record button, the staff panel opening over it) lifts the probe, or the
+  // scene would go on scraping at the last place for the whole visit.
+  const bool attract = session_.mode() == SessionMode::kAttract && !session_.staff_panel_open();
   if (!options_.attract_stroke || !attract) {
     passive_started_ns_ = -1;
+    LiftPassiveProbe(now_ns);
     return;
   }
   if (passive_started_ns_ < 0) passive_started_ns_ = now_ns;
@@ -186,14 +200,7 @@ void KioskEngine::PassiveStroke(std::int64_t now_ns) {
   // A quiet gap first, so the attract screen starts in silence after a visit.
   const bool down = in_cycle_s >= kPassiveGapS;
   if (!down) {
-    if (passive_down_) {
-      passive_down_ = false;
-      passive_quiet_since_ns_ = now_ns;
-      synth::ProbeCommand lift = last_passive_command_;
-      lift.tip_down = false;
-      lift.velocity_mps = 0.0;
-      player_->control().Probe(now_ns, lift);
-    }
+    LiftPassiveProbe(now_ns);
     return;
   }
   // Back and forth across the middle of the picture along a gentle wave: the whole burst covers

@@ -2,8 +2,13 @@
 #include "kiosk/session.h"
 
 #include <algorithm>
+#include <numeric>
 
 namespace sas::kiosk {
+
+double AttractCycleS(const SessionConfig& config) {
+  return std::accumulate(config.attract_slots_s.begin(), config.attract_slots_s.end(), 0.0);
+}
 
 Session::Session(const SessionConfig& config) : config_(config) {
   config_.texture_count = std::max(config_.texture_count, 1);
@@ -33,7 +38,17 @@ void Session::Show(SurfaceChoice surface, bool speak_name) {
   SessionAction action{SessionAction::Kind::kShowSurface};
   action.surface = surface;
   actions_.push_back(action);
-  if (speak_name && !surface.voice) Speak(Cue::kTextureName, surface.texture);
+  if (speak_name && !surface.voice) {
+    Speak(Cue::kTextureName, surface.texture);
+    named_ = true;
+  }
+}
+
+// The texture under the pen is named once when a visit starts, however it starts.
+void Session::NameTexture() {
+  if (named_ || surface_.voice) return;
+  named_ = true;
+  Speak(Cue::kTextureName, surface_.texture);
 }
 
 // Any visitor activity: leaves the attract screen and restarts the idle timer. The visit itself
@@ -54,6 +69,7 @@ void Session::OnPen(double now_s, bool tip_down) {
     if (!visit_counted_) {
       visit_counted_ = true;
       CountOne(counters_.sessions);
+      NameTexture();
     }
     if (surface_.voice) {
       CountOne(counters_.voice_strokes);
@@ -69,7 +85,12 @@ void Session::OnTokenSelection(double now_s, int texture) {
   token_texture_ = texture < 0 ? -1 : ClampTexture(texture);
   // A token placed while recording does not interrupt the take; it applies afterwards.
   if (mode_ == SessionMode::kCountdown || mode_ == SessionMode::kRecording) return;
-  Show({false, token_texture_ < 0 ? config_.default_texture : token_texture_}, true);
+  const SurfaceChoice choice{false, token_texture_ < 0 ? config_.default_texture : token_texture_};
+  if (choice == surface_) {
+    NameTexture();  // the token chose what was shown already: still named once
+  } else {
+    Show(choice, true);
+  }
 }
 
 void Session::CancelRecordingFlow(bool speak_description) {
@@ -189,11 +210,7 @@ void Session::Tick(double now_s) {
     CancelRecordingFlow(true);
   }
   if (mode_ == SessionMode::kCountdown) CountDown(now_s);
-  if (mode_ == SessionMode::kAttract && config_.invitation_interval_s > 0.0 &&
-      now_s - last_invitation_s_ >= config_.invitation_interval_s) {
-    last_invitation_s_ = now_s;
-    Speak(Cue::kInvitation, surface_.texture);
-  }
+  AttractCycle(now_s);
   if (mode_ == SessionMode::kCountdown && now_s - phase_started_s_ >= config_.countdown_s) {
     mode_ = SessionMode::kRecording;
     phase_started_s_ = now_s;
@@ -209,7 +226,9 @@ void Session::Tick(double now_s) {
       now_s - last_activity_s_ >= config_.idle_timeout_s) {
     mode_ = SessionMode::kAttract;
     visit_counted_ = false;
-    last_invitation_s_ = now_s;  // the first invitation one interval after the reset
+    named_ = false;
+    next_slot_ = 0;
+    next_slot_s_ = now_s;  // the cycle starts over with the configured language
     if (has_voice_) {
       has_voice_ = false;
       Emit(SessionAction::Kind::kWipeVoice);
@@ -220,6 +239,23 @@ void Session::Tick(double now_s) {
     Show({false, token_texture_ < 0 ? config_.default_texture : token_texture_}, false);
     Emit(SessionAction::Kind::kEnterAttract);
   }
+}
+
+void Session::AttractCycle(double now_s) {
+  const auto& slots = config_.attract_slots_s;
+  if (mode_ != SessionMode::kAttract || slots.empty()) return;
+  if (staff_panel_open_) {
+    next_slot_s_ = std::max(next_slot_s_, now_s);  // resumes where it was once the panel closes
+    return;
+  }
+  if (now_s < next_slot_s_) return;
+  SessionAction action{SessionAction::Kind::kAttractLanguage};
+  action.count = next_slot_;
+  actions_.push_back(action);
+  Speak(Cue::kInvitation, surface_.texture);
+  // From now, not from when the slot was due: a late tick never squeezes the next language.
+  next_slot_s_ = now_s + slots[static_cast<std::size_t>(next_slot_)];
+  next_slot_ = (next_slot_ + 1) % static_cast<int>(slots.size());
 }
 
 std::vector<SessionAction> Session::TakeActions() {

@@ -18,7 +18,13 @@
 // - Layered spoken information without sight: the name when a token is placed; the description
 //   when the pen rests still on the surface (OnPenRest: the engine watches the pen), found by a
 //   visitor who simply stops moving, and told in the spoken invitation.
-// - While idle (attract), the spoken invitation every `invitation_interval_s` (0: never).
+// - While idle (attract), the attract cycle: each attract language in turn has a slot of
+//   `attract_slots_s[i]` seconds, starting with its texts on the screen and its spoken invitation
+//   (kAttractLanguage, then the invitation), so every visitor language is shown and heard once a
+//   cycle without anybody knowing a key. No slots: no spoken invitation, the configured language.
+//   The cycle waits while the staff panel is open.
+// - A visit's texture is named when the visit starts (its first touch or a token), not only when
+//   the pen rests.
 // - After `idle_timeout_s` without pen, token or button activity: bubbles un-popped, voice wiped,
 //   attract screen, and the texture of the token still on a switch (the default texture when
 //   none is): the picture must match the token a visitor sees. Any touch leaves attract at once;
@@ -72,7 +78,8 @@ struct SessionAction {
     kResetTextures,    // un-pop the bubbles, relax every deformation
     kEnterAttract,
     kLeaveAttract,
-    kStaffPanel,  // open (`open` = true) or close the staff panel
+    kStaffPanel,       // open (`open` = true) or close the staff panel
+    kAttractLanguage,  // the attract cycle's slot `count` begins: show and speak its language
   };
   Kind kind;
   SurfaceChoice surface{};
@@ -91,8 +98,12 @@ struct SessionConfig {
   double record_max_s = 5.0;
   double long_hold_s = 1.2;
   double staff_panel_timeout_s = 300.0;
-  double invitation_interval_s = 0.0;  // 0: no spoken invitation
+  // The attract cycle: one slot per attract language, in order (empty: no spoken invitation).
+  std::vector<double> attract_slots_s;
 };
+
+// The attract cycle's length (the sum of its slots).
+double AttractCycleS(const SessionConfig& config);
 
 class Session {
  public:
@@ -133,6 +144,8 @@ class Session {
   void Speak(Cue cue, int texture);
   void CancelRecordingFlow(bool speak_description);
   void CountDown(double now_s);
+  void AttractCycle(double now_s);
+  void NameTexture();
   int ClampTexture(int texture) const;
 
   SessionConfig config_;
@@ -149,8 +162,10 @@ class Session {
   double button_down_since_s_ = 0.0;
   double last_activity_s_ = 0.0;
   double phase_started_s_ = 0.0;
-  int next_count_ = 0;  // countdown: the number to speak next (3..1), 0: the tone, -1: done
-  double last_invitation_s_ = 0.0;
+  int next_count_ = 0;        // countdown: the number to speak next (3..1), 0: the tone, -1: done
+  double next_slot_s_ = 0.0;  // when the attract cycle's next slot begins
+  int next_slot_ = 0;
+  bool named_ = false;  // this visit has heard its texture's name
   UsageCounters counters_;
   std::vector<SessionAction> actions_;
 };

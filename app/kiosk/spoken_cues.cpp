@@ -88,6 +88,12 @@ void SpokenCues::LoadLanguages(const KioskConfig& config, const std::string& str
                 config.language) != config.visitor_languages.end()) {
     visitor_languages_.insert(visitor_languages_.begin(), 0);
   }
+  attract_languages_ = {0};
+  if (visitor_languages_.size() >= 2) {
+    for (const int language : visitor_languages_) {
+      if (language != 0) attract_languages_.push_back(language);
+    }
+  }
 }
 
 void SpokenCues::LoadCues(const KioskConfig& config, bool spoken_cues) {
@@ -160,6 +166,10 @@ void SpokenCues::LoadCues(const KioskConfig& config, bool spoken_cues) {
       language.description_cues.push_back(load(dir, key + "_description"));
     }
     for (const auto& key : CueKeys()) language.message_cues[key] = load(dir, key);
+    if (const int clip = language.message_cues["invitation"]; clip >= 0) {
+      language.invitation_s =
+          static_cast<double>(clip_samples_[static_cast<std::size_t>(clip)].samples.size()) / fs_hz;
+    }
     expected += static_cast<int>(texture_keys_.size() * 2 + CueKeys().size());
   }
   // For a blind visitor the cues are the only way to know which texture is under the pen: a box
@@ -257,6 +267,27 @@ bool SpokenCues::NextLanguage() {
                   ? visitor_languages_.front()
                   : *(at + 1);
   return true;
+}
+
+std::vector<double> SpokenCues::AttractSlotsS(double quiet_s) const {
+  std::vector<double> slots;
+  if (quiet_s <= 0.0) return slots;
+  double cycle_s = 0.0;
+  for (const int language : attract_languages_) {
+    const double spoken_s = languages_[static_cast<std::size_t>(language)].invitation_s;
+    slots.push_back(spoken_s > 0.0 ? spoken_s + quiet_s : kNoInvitationSlotS);
+    cycle_s += slots.back();
+  }
+  if (cycle_s < kMinAttractCycleS) {
+    for (auto& slot : slots)
+      slot += (kMinAttractCycleS - cycle_s) / static_cast<double>(slots.size());
+  }
+  return slots;
+}
+
+void SpokenCues::SetAttractLanguage(int slot) {
+  if (attract_languages_.empty()) return;
+  language_ = attract_languages_[static_cast<std::size_t>(slot) % attract_languages_.size()];
 }
 
 const LanguageTable& SpokenCues::strings() const {

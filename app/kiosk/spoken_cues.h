@@ -57,6 +57,18 @@ class SpokenCues {
   // The next of the visitor languages; false (nothing changes) when fewer than two.
   bool NextLanguage();
   void ResetLanguage() { language_ = 0; }  // the configured language
+  // The attract cycle (session.h): the configured language, then the other visitor languages when
+  // the language key has at least two. One slot each: its invitation's length and `quiet_s`, and
+  // kNoInvitationSlotS for a language without an invitation cue (its texts are still shown). A
+  // cycle shorter than kMinAttractCycleS is stretched evenly to it, so a kiosk with one language
+  // does not repeat itself every few seconds. `quiet_s` 0: no cycle (empty).
+  static constexpr double kNoInvitationSlotS = 10.0;
+  static constexpr double kMinAttractCycleS = 45.0;
+  std::vector<double> AttractSlotsS(double quiet_s) const;
+  // Slot `slot`'s language becomes the current one (screen texts and cues).
+  void SetAttractLanguage(int slot);
+  // Whether the attract cycle has more than the configured language.
+  bool attract_cycles() const { return attract_languages_.size() > 1; }
   const LanguageTable& strings() const;
 
   const std::string& cues_dir() const { return cues_dir_; }
@@ -73,6 +85,7 @@ class SpokenCues {
     LanguageTable table;
     std::vector<int> name_cues, description_cues;  // per texture
     std::map<std::string, int> message_cues;       // per CueKeys()
+    double invitation_s = 0.0;                     // its invitation cue's length (0: none)
   };
 
   int AddClip(std::string name, std::vector<float> mono, int channel);
@@ -85,6 +98,7 @@ class SpokenCues {
   std::vector<player::PlayerClip> clip_samples_;
   std::vector<LanguageAssets> languages_;  // [0]: the configured language
   std::vector<int> visitor_languages_;     // indices into languages_ the language key steps through
+  std::vector<int> attract_languages_;     // indices into languages_ the attract cycle shows
   int language_ = 0;
   int tone_clip_ = -1, sweep_clip_ = -1, record_tone_clip_ = -1;
   int staff_cues_ = 0;

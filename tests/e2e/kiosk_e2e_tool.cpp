@@ -4,6 +4,9 @@
 //   speech IN.wav OUT.f32        a WAV (espeak-ng) as float32 mono 48 kHz at a -6 dBFS peak
 //   audio OUT.raw DOWN UP        the played stream (float32 stereo) between byte offsets DOWN
 //                                and UP (the drag) is audible, and its end has decayed to silence
+//   level OUT.raw CH FROM TO MIN MAX   the RMS of channel CH (1 sound, 2 vibration) between byte
+//                                offsets FROM and TO of the played stream, in dBFS, is within
+//                                [MIN, MAX] (exit 1 when not)
 //   matches SHOT.png PICTURE     the screenshot shows PICTURE fitted to the screen (pixel check)
 //   dent SHOT.png PICTURE X Y    the dent at (X, Y) and the picture elsewhere
 //   voice SHOT.png               the screenshot is a sound image: grey, silent rows mid-grey,
@@ -171,6 +174,24 @@ int Audio(const std::string& raw, long down_bytes, long up_bytes) {
   return 0;
 }
 
+int Level(const std::string& raw, int channel, long from_bytes, long to_bytes, double min_db,
+          double max_db) {
+  const auto stereo = ReadF32(raw);
+  const std::size_t frames = stereo.size() / 2;
+  const auto a = static_cast<std::size_t>(std::max(0L, from_bytes) / 8);
+  const auto b = std::min(frames, static_cast<std::size_t>(std::max(0L, to_bytes) / 8));
+  double sum = 0.0;
+  for (std::size_t i = a; i < b; ++i) {
+    const double x = stereo[2 * i + static_cast<std::size_t>(channel == 2)];
+    sum += x * x;
+  }
+  const double db = b > a ? Db(std::sqrt(sum / static_cast<double>(b - a))) : -999.0;
+  std::printf("level: channel %d, %.2f..%.2f s: %.1f dBFS rms (wanted %.0f..%.0f)\n", channel,
+              static_cast<double>(a) / kRateHz, static_cast<double>(b) / kRateHz, db, min_db,
+              max_db);
+  return b > a && db >= min_db && db <= max_db ? 0 : 1;
+}
+
 double MeanDiff(const sas::ui::ImageRgba& a, const sas::ui::ImageRgba& b) {
   double sum = 0.0;
   for (int y = 0; y < a.height(); ++y) {
@@ -330,6 +351,19 @@ int main(int argc, char** argv) {
       app.add_subcommand("find", "exit 1 when any FILE contains a stretch of the speech samples");
   find->add_option("speech", speech, "float32 speech samples")->required();
   find->add_option("files", files, "the files to search");
+  int channel = 1;
+  double min_db = 0.0, max_db = 0.0;
+  CLI::App* level = app.add_subcommand(
+      "level", "the RMS level of CHANNEL (1 or 2) between byte offsets FROM and TO lies in "
+               "[MIN_DB, MAX_DB] dBFS");
+  level->add_option("raw", in, "float32 stereo stream")->required();
+  level->add_option("channel", channel, "1: speaker, 2: transducer")
+      ->required()
+      ->check(CLI::Range(1, 2));
+  level->add_option("from", down, "byte offset where the span starts")->required();
+  level->add_option("to", up, "byte offset where it ends")->required();
+  level->add_option("min_db", min_db, "lowest level wanted, dBFS")->required();
+  level->add_option("max_db", max_db, "highest level wanted, dBFS")->required();
   CLI::App* amber =
       app.add_subcommand("amber", "prints how many pixels have the staff panel's warning amber");
   amber->add_option("shot", shot, "the screenshot (PNG)")->required();
@@ -341,6 +375,7 @@ int main(int argc, char** argv) {
     if (dent->parsed()) return Dent(shot, picture, x, y);
     if (voice->parsed()) return Voice(shot);
     if (find->parsed()) return Find(speech, files);
+    if (level->parsed()) return Level(in, channel, down, up, min_db, max_db);
     if (amber->parsed()) return Amber(shot);
   } catch (const std::exception& e) {
     std::printf("FAIL: %s\n", e.what());

@@ -18,7 +18,9 @@
 #   input: the screen shows a grey sound image with silent and sounding rows; visitor key
 #   combinations leave it running; the staff chord opens the panel (and closes it); after the
 #   idle timeout the voice is wiped and no file the app could write holds any stretch of the
-#   speech samples.
+#   speech samples. The language key (at the start) and the record key (after the idle reset),
+#   each pressed during the attract screen's passive stroke, leave no stroke in the played stream
+#   0.5 s later.
 # Every step waits for its event (a log line, a screenshot that passes its check, the played
 # stream's length) with xvfb_common.sh's generous deadline, and says how long it waited.
 # usage: kiosk_xvfb_e2e.sh <kiosk_gpio_e2e_app> <kiosk_e2e_tool> <textures dir>
@@ -98,6 +100,30 @@ undented() {
 # The played stream (float32 stereo at 48 kHz: 384000 bytes a second) is at least this long.
 stream_bytes() { stat -c %s "$work/out.raw"; }
 stream_reached() { [ "$(stream_bytes)" -ge "$1" ]; }
+# The attract screen's passive stroke is felt now: the vibration (channel 2) of the stream's last
+# 0.2 s.
+stroke_felt() {
+  local b
+  b=$(stream_bytes)
+  "$tool" level "$work/out.raw" 2 $((b - 76800)) "$b" -60 0 >/dev/null
+}
+# passive_lifted <what> <xdotool args...>: during a passive stroke the keys end the attract screen;
+# from 0.5 to 1 s later the stream carries no stroke. Judged on the vibration (channel 2), which
+# only a stroke drives: the cue the key starts is spoken on channel 1.
+passive_lifted() {
+  local what=$1 n at
+  shift
+  until_true "the passive stroke felt" stroke_felt || fail "no passive stroke on the attract screen"
+  n=$(grep -c 'visit started' "$work/app.log")
+  xdotool "$@"
+  wait_count 'visit started' $((n + 1)) || fail "$what did not end the attract screen"
+  at=$(stream_bytes)
+  until_true "1 s of the stream after $what" stream_reached $((at + 384000)) ||
+    fail "the stream stopped after $what"
+  "$tool" level "$work/out.raw" 2 $((at + 192000)) $((at + 384000)) -999 -70 ||
+    fail "the passive stroke goes on after $what"
+  echo "ok: $what during the passive stroke lifts it: no stroke 0.5 s later"
+}
 
 mkdir -p "$work/state" "$work/home" "$work/cwd"
 # The visitor's voice for the capture input: espeak-ng speech as float32 mono 48 kHz.
@@ -151,6 +177,10 @@ eval "$(xdotool getwindowgeometry --shell "$window_id")"
 echo "ok: full-screen ${WIDTH}x${HEIGHT}"
 grep -q 'audio running' "$work/app.log" || fail "the audio device did not open"
 until_true "the played stream" test -s "$work/out.raw" || fail "nothing is played"
+
+# The language key during the attract screen's passive stroke (the first burst starts 6 s after
+# the attract screen) ends the stroke with the attract screen.
+passive_lifted "the language key" key l
 
 # A visit starts: a first touch leaves the attract screen.
 xdotool mousemove 100 100 click 1
@@ -278,4 +308,7 @@ mapfile -t written < <(find "$work/state" "$work/home" "$work/cwd" /tmp /var/tmp
   grep -v -e "^/tmp/sas-kiosk-e2e-[^/]*/[^/]*\$")  # the test's own inputs and outputs (any run)
 "$tool" find "$work/speech.f32" "${written[@]}" || fail "a file holds the visitor's voice"
 ls "$work/state"
+# Back on the attract screen: the record key during its passive stroke ends the stroke too (held
+# 0.3 s: a press, not the hold that cancels).
+passive_lifted "the record key" keydown r sleep 0.3 keyup r
 echo "PASS"

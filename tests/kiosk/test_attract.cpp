@@ -1,8 +1,10 @@
 // The attract screen's passive exploration: while idle the engine strokes the picture itself in
 // bursts (heard, gently), the microphone's room measurement is allowed only in the quiet gaps,
 // a hover does not end it, and a touch does at once without lifting the visitor's own stroke.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "kiosk/kiosk_engine.h"
@@ -27,19 +29,24 @@ struct Run {
     options.config.invitation_interval_s = 0.0;
     return options;
   }
-  // Speaker RMS over `seconds`; `listening` counts the blocks the room could be measured in.
-  double Advance(double seconds, int* listening = nullptr) {
+  // Speaker RMS over `seconds` (the transducer's in `haptic_rms`); `listening` counts the blocks
+  // the room could be measured in.
+  double Advance(double seconds, int* listening = nullptr, double* haptic_rms = nullptr) {
     std::vector<float> out(kFrames * 2);
-    double sum = 0.0;
+    double sum = 0.0, haptic_sum = 0.0;
     std::size_t n = 0;
     for (double s = 0.0; s < seconds; s += kFrames / 48000.0) {
       engine.Tick(t);
       if (listening && engine.AmbientListening()) ++*listening;
       engine.audio().Render(out.data(), kFrames, 2);
-      for (int i = 0; i < kFrames; ++i) sum += static_cast<double>(out[2 * i]) * out[2 * i];
+      for (int i = 0; i < kFrames; ++i) {
+        sum += static_cast<double>(out[2 * i]) * out[2 * i];
+        haptic_sum += static_cast<double>(out[2 * i + 1]) * out[2 * i + 1];
+      }
       n += kFrames;
       t += kBlockNs;
     }
+    if (haptic_rms) *haptic_rms = std::sqrt(haptic_sum / static_cast<double>(n));
     return std::sqrt(sum / static_cast<double>(n));
   }
   PenReading Pen(double x, bool down) const {
@@ -114,4 +121,39 @@ TEST_CASE("a hover leaves the passive stroke going and a touch takes over at onc
   }
   CHECK(20.0 * std::log10(std::sqrt(sum / 200.0)) > -70.0);
   CHECK_FALSE(run.engine.passive_pen().has_value());
+}
+
+TEST_CASE("whatever ends the attract screen lifts the passive probe: no stroke sound 0.5 s later",
+          "[kiosk]") {
+  // The language key, the record button, a token and the staff chord each end the attract
+  // screen without a touch; the passive stroke must not go on scraping under the visit.
+  const auto db = [](double rms) { return 20.0 * std::log10(std::max(rms, 1e-12)); };
+  for (const char* how : {"language key", "record button", "token", "staff chord"}) {
+    CAPTURE(how);
+    Run run(true);
+    run.Advance(7.5);  // 1.5 s into the first burst
+    REQUIRE(run.engine.passive_pen().has_value());
+    double burst_haptic = 0.0;
+    const double burst = run.Advance(0.5, nullptr, &burst_haptic);
+    REQUIRE(db(burst) > -70.0);
+    const std::string what = how;
+    if (what == "language key") {
+      REQUIRE(run.engine.NextLanguage(run.t));
+    } else if (what == "record button") {
+      run.engine.OnRecordButton(run.t, true);
+      run.engine.OnRecordButton(run.t + 100'000'000, false);
+    } else if (what == "token") {
+      run.engine.OnToken(run.t, 1);
+    } else {
+      run.engine.OnStaffChord(run.t);
+    }
+    run.Advance(0.5);
+    CHECK_FALSE(run.engine.passive_pen().has_value());
+    double haptic = 0.0;
+    const double after = run.Advance(0.5, nullptr, &haptic);
+    INFO("burst " << db(burst) << " dBFS sound, " << db(burst_haptic) << " dBFS vibration; 0.5 s "
+                  << "after: " << db(after) << " / " << db(haptic) << " dBFS");
+    CHECK(db(after) < -90.0);
+    CHECK(db(haptic) < -90.0);
+  }
 }

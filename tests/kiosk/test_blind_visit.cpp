@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -43,6 +44,14 @@ std::string Expected(const std::string& language, const std::string& key) {
   const std::string root = std::string(sas::kSourceDir) + "/textures/";
   const toml::table table = toml::parse_file(root + "strings/" + language + ".toml");
   if (auto text = table["cues"][key].value<std::string>()) return *text;
+  if (key == "invitation") {  // spoken as its parts in order, one sentence
+    std::string sentence;
+    for (const char* part : {"scratch", "rest", "roll", "token", "record", "language"}) {
+      sentence +=
+          (sentence.empty() ? "" : ", ") + table["invitation"][part].value_or(std::string());
+    }
+    return sentence + ".";
+  }
   if (auto text = table["textures"][key].value<std::string>()) return *text;
   const auto split = key.rfind('_');
   const toml::table texture = toml::parse_file(root + key.substr(0, split) + "/texture.toml");
@@ -138,7 +147,10 @@ void BlindVisit(const std::string& language) {
   engine.SetCueObserver([&](const CueEvent& cue) { heard.push_back({cue, visit.frames_kept()}); });
 
   visit.Advance(1.0);
-  REQUIRE(heard.empty());             // nobody there yet, and the first invitation is 15 s away
+  REQUIRE(heard.size() == 1);  // the attract screen invites at once
+  REQUIRE(heard[0].cue.key == "invitation");
+  visit.Advance(12.0);  // the whole invitation (about 10 s), then a token
+  const double token_s = visit.now_s();
   engine.OnToken(visit.now_ns(), 1);  // broken glass
   visit.Advance(3.5);
   const double rest_start_s = visit.now_s();
@@ -150,25 +162,28 @@ void BlindVisit(const std::string& language) {
   visit.SetVoice(sas::kiosk::SynthesiseVoice(kFs, 2.5));
   visit.Advance(5.5 + 3.0 + 4.0);
   CHECK(engine.has_voice());
-  visit.Advance(20.0 + 15.0 + 6.0);  // idle reset, then the invitation 15 s later
+  visit.Advance(20.0 + 15.0 + 6.0);  // the idle reset and its invitation at once
   const auto& out = visit.output();
 
   std::vector<std::string> keys;
   for (const auto& h : heard) keys.push_back(h.cue.key);
-  REQUIRE(keys == std::vector<std::string>{"broken_glass_name", "broken_glass_description",
-                                           "record_countdown", "count_3", "count_2", "count_1",
-                                           "tone", "voice_ready", "invitation"});
+  REQUIRE(keys == std::vector<std::string>{"invitation", "broken_glass_name",
+                                           "broken_glass_description", "record_countdown",
+                                           "count_3", "count_2", "count_1", "tone", "voice_ready",
+                                           "invitation"});
   const auto at_s = [&](const Heard& h) { return static_cast<double>(h.frame) / kFs; };
   // When each was heard.
-  CHECK(at_s(heard[0]) == Approx(1.0).margin(0.02));
-  CHECK(at_s(heard[1]) - rest_start_s == Approx(2.0).margin(0.05));
-  CHECK(at_s(heard[2]) - press_s == Approx(0.0).margin(0.02));
-  CHECK(at_s(heard[4]) - at_s(heard[3]) == Approx(1.0).margin(0.02));
+  CHECK(at_s(heard[0]) == Approx(0.0).margin(0.02));
+  CHECK(at_s(heard[1]) - token_s == Approx(0.0).margin(0.02));
+  CHECK(at_s(heard[2]) - rest_start_s == Approx(2.0).margin(0.05));
+  CHECK(at_s(heard[3]) - press_s == Approx(0.0).margin(0.02));
   CHECK(at_s(heard[5]) - at_s(heard[4]) == Approx(1.0).margin(0.02));
-  CHECK(at_s(heard[6]) - press_s == Approx(5.5 - 0.4).margin(0.02));
-  CHECK(at_s(heard[7]) - press_s == Approx(5.5 + 3.0).margin(0.05));
-  // The take ended the last activity: the idle reset 20 s later, the invitation 15 s after that.
-  CHECK(at_s(heard[8]) - press_s == Approx(5.5 + 3.0 + 20.0 + 15.0).margin(0.05));
+  CHECK(at_s(heard[6]) - at_s(heard[5]) == Approx(1.0).margin(0.02));
+  CHECK(at_s(heard[7]) - press_s == Approx(5.5 - 0.4).margin(0.02));
+  CHECK(at_s(heard[8]) - press_s == Approx(5.5 + 3.0).margin(0.05));
+  // The take ended the last activity: the idle reset 20 s later, with its invitation (one
+  // language: the next one a 45 s cycle later, after this run).
+  CHECK(at_s(heard[9]) - press_s == Approx(5.5 + 3.0 + 20.0).margin(0.05));
 
   for (const auto& h : heard) {
     INFO(language << " " << h.cue.key);
@@ -202,6 +217,77 @@ TEST_CASE(
 
 TEST_CASE("the same blind visit in German uses the German cues and strings", "[kiosk][e2e]") {
   BlindVisit("de");
+}
+
+TEST_CASE(
+    "at the default settings the attract screen shows and speaks every visitor language's "
+    "invitation within one cycle of at most 60 s, each naming tokens, resting, recording, "
+    "rolling and the language key",
+    "[kiosk][e2e]") {
+  // Nobody presses a key: the cycle alone reaches every language. Each invitation is heard where
+  // it was handed over (its cue file's samples in the output), in full before the next, while
+  // the screen's texts (engine.strings(), what the attract screen draws) are in its language.
+  sas::kiosk::KioskEngineOptions options;
+  options.virtual_clock = true;
+  options.cues_dir = SAS_CUES_DIR;
+  KioskEngine engine(options);
+  const double cycle_s = sas::kiosk::AttractCycleS(engine.session().config());
+  INFO("attract cycle " << cycle_s << " s");
+  CHECK(cycle_s <= 60.0);
+  VirtualVisit visit(engine);
+  std::vector<Heard> heard;
+  std::vector<std::string> shown;  // the screen's language when each cue was handed over
+  engine.SetCueObserver([&](const CueEvent& cue) {
+    heard.push_back({cue, visit.frames_kept()});
+    shown.push_back(engine.strings().code);
+  });
+  visit.Advance(std::min(cycle_s, 60.0) + 0.5);
+  const auto& out = visit.output();
+  const std::vector<std::string> languages = {"en", "de", "fr", "it", "es"};
+  REQUIRE(heard.size() >= languages.size());
+  // Each language's key word for the parts a visitor must learn: tokens, resting, recording,
+  // rolling (its side button) and the language key, L.
+  const std::map<std::string, std::vector<std::string>> words = {
+      {"en", {"Token", "Rest", "records", "roll", "L "}},
+      {"de", {"Spielsteine", "still", "Stimme", "rollt", "L "}},
+      {"fr", {"jetons", "immobile", "enregistre", "rouler", "L "}},
+      {"it", {"gettoni", "Fermala", "registra", "rotola", "L "}},
+      {"es", {"fichas", "quieto", "graba", "rueda", "L "}}};
+  for (std::size_t i = 0; i < languages.size(); ++i) {
+    const auto& h = heard[i];
+    INFO(languages[i]);
+    CHECK(h.cue.key == "invitation");
+    CHECK(h.cue.language == languages[i]);
+    CHECK(shown[i] == languages[i]);
+    const double at_s = static_cast<double>(h.frame) / kFs;
+    const auto clip = CueSamples(languages[i], "invitation");
+    const double clip_s = static_cast<double>(clip.size()) / kFs;
+    INFO("at " << at_s << " s, " << clip_s << " s long");
+    CHECK(at_s + clip_s <= 60.0);
+    if (i + 1 < heard.size()) {  // heard in full: the next starts after it
+      CHECK(static_cast<double>(heard[i + 1].frame) / kFs >= at_s + clip_s);
+    }
+    // Its first and last second where they belong (cheaper than the whole clip at every lag).
+    const std::size_t second = static_cast<std::size_t>(kFs);
+    REQUIRE(clip.size() > 2 * second);
+    const std::vector<float> head(clip.begin(), clip.begin() + static_cast<long>(second));
+    const std::vector<float> tail(clip.end() - static_cast<long>(second), clip.end());
+    const auto [start, correlation] = Locate(out, h.frame, head, 2 * 256);
+    CHECK(correlation > 0.9);
+    CHECK(Locate(out, start + clip.size() - second, tail, 1).second > 0.9);
+    for (const auto& word : words.at(languages[i])) {
+      INFO(word);
+      CHECK(h.cue.text.find(word) != std::string::npos);
+      std::string screen;
+      for (const auto& part : sas::kiosk::InvitationParts()) {
+        screen += sas::kiosk::LoadLanguageTable(std::string(sas::kSourceDir) + "/textures/strings",
+                                                languages[i])
+                      .Invitation(part) +
+                  " ";
+      }
+      CHECK(screen.find(word) != std::string::npos);
+    }
+  }
 }
 
 #endif

@@ -292,3 +292,90 @@ TEST_CASE("a visit is counted at its first pen contact only", "[kiosk]") {
   session.OnPen(71.0, true);
   CHECK(session.counters().sessions == 2);
 }
+
+TEST_CASE(
+    "the attract cycle gives each language its slot: shown and invited in turn, paused by "
+    "the staff panel, and started over with the configured language at the idle reset",
+    "[kiosk]") {
+  SessionConfig config = Config();
+  config.attract_slots_s = {10.0, 12.0, 11.0};
+  CHECK(sas::kiosk::AttractCycleS(config) == Approx(33.0));
+  Session session(config);
+  std::vector<std::pair<double, int>> slots;  // when each slot began, and which
+  const auto run = [&](double from_s, double to_s) {
+    for (double t = from_s; t < to_s; t += 0.01) {
+      session.Tick(t);
+      const auto actions = session.TakeActions();
+      for (std::size_t i = 0; i < actions.size(); ++i) {
+        if (actions[i].kind != Kind::kAttractLanguage) continue;
+        slots.emplace_back(t, actions[i].count);
+        // Its invitation follows at once, in the slot's language.
+        REQUIRE(i + 1 < actions.size());
+        CHECK(actions[i + 1].kind == Kind::kSpeak);
+        CHECK(actions[i + 1].cue == Cue::kInvitation);
+      }
+    }
+  };
+  run(0.0, 40.0);
+  REQUIRE(slots.size() == 4);
+  CHECK(slots[0].second == 0);
+  CHECK(slots[1].second == 1);
+  CHECK(slots[2].second == 2);
+  CHECK(slots[3].second == 0);  // and round again
+  CHECK(slots[1].first - slots[0].first == Approx(10.0).margin(0.02));
+  CHECK(slots[2].first - slots[1].first == Approx(12.0).margin(0.02));
+  CHECK(slots[3].first - slots[2].first == Approx(11.0).margin(0.02));
+  // The staff panel over the attract screen holds the cycle.
+  session.OnStaffChord(40.0);
+  session.TakeActions();
+  slots.clear();
+  run(40.0, 70.0);
+  CHECK(slots.empty());
+  session.OnStaffChord(70.0);
+  session.TakeActions();
+  run(70.0, 70.1);
+  REQUIRE(slots.size() == 1);
+  CHECK(slots[0].second == 1);  // where it was
+  // A visit stops it; the idle reset starts it over with slot 0 at once.
+  session.OnPen(71.0, true);
+  session.OnPen(71.1, false);
+  session.TakeActions();
+  slots.clear();
+  run(71.1, 71.1 + config.idle_timeout_s + 0.05);
+  REQUIRE(slots.size() == 1);
+  CHECK(slots[0].second == 0);
+  CHECK(slots[0].first == Approx(71.1 + config.idle_timeout_s).margin(0.02));
+  // Without slots nothing is spoken on the attract screen.
+  Session quiet(Config());
+  for (double t = 0.0; t < 100.0; t += 0.5) quiet.Tick(t);
+  CHECK(Count(quiet.TakeActions(), Kind::kSpeak) == 0);
+}
+
+TEST_CASE(
+    "a visit's texture is named when it starts, by a touch or by a token choosing the "
+    "texture already shown",
+    "[kiosk]") {
+  {
+    Session session(Config());
+    session.OnPen(1.0, true);
+    const auto actions = session.TakeActions();
+    const auto* speak = Find(actions, Kind::kSpeak);
+    REQUIRE(speak != nullptr);
+    CHECK(speak->cue == Cue::kTextureName);
+    CHECK(speak->surface.texture == 2);
+    session.OnPen(1.5, false);
+    session.OnPen(2.0, true);  // the next stroke of the same visit: no name again
+    CHECK(Count(session.TakeActions(), Kind::kSpeak) == 0);
+  }
+  {
+    Session session(Config());
+    session.OnTokenSelection(1.0, 2);  // the default texture, already shown
+    const auto actions = session.TakeActions();
+    CHECK(Count(actions, Kind::kShowSurface) == 0);
+    const auto* speak = Find(actions, Kind::kSpeak);
+    REQUIRE(speak != nullptr);
+    CHECK(speak->cue == Cue::kTextureName);
+    session.OnPen(2.0, true);  // named already
+    CHECK(Count(session.TakeActions(), Kind::kSpeak) == 0);
+  }
+}

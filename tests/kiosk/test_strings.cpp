@@ -41,6 +41,17 @@ TEST_CASE("every shipped language table has every cue and screen text and the te
     CHECK(table.screen.size() == sas::kiosk::ScreenKeys().size());
     CHECK_FALSE(table.language_name.empty());
     for (const auto& key : sas::kiosk::ScreenKeys()) CHECK_FALSE(table.Screen(key).empty());
+    // The invitation's parts: each there, and each in the spoken invitation (what a blind
+    // visitor hears names what the screen shows).
+    REQUIRE(sas::kiosk::InvitationParts() ==
+            std::vector<std::string>{"scratch", "rest", "roll", "token", "record", "language"});
+    for (const auto& part : sas::kiosk::InvitationParts()) {
+      INFO(part);
+      const std::string text = FromFile(code, "invitation", part);
+      CHECK_FALSE(text.empty());
+      CHECK(table.Invitation(part) == text);
+      CHECK(table.cues.at("invitation").find(text) != std::string::npos);
+    }
     // English names and descriptions are the textures' own files; every other language has its
     // own.
     for (const auto& texture : kTextures) {
@@ -53,7 +64,9 @@ TEST_CASE("every shipped language table has every cue and screen text and the te
   for (const auto& code : {"de", "fr", "it", "es"}) {
     const auto other = LoadLanguageTable(kStringsDir, code);
     CHECK(other.cues.at("invitation") != en.cues.at("invitation"));
-    CHECK(other.screen.at("attract_title") != en.screen.at("attract_title"));
+    for (const auto& part : sas::kiosk::InvitationParts()) {
+      CHECK(other.Invitation(part) != en.Invitation(part));
+    }
   }
 }
 
@@ -61,7 +74,11 @@ TEST_CASE("a language table with a missing or unknown key is refused naming the 
           "[kiosk]") {
   sas::test::TempDir dir;
   std::string text = "[voice]\nlanguage_name = \"X\"\nespeak_voice = \"en\"\n[cues]\n";
-  for (const auto& key : sas::kiosk::CueKeys()) text += key + " = \"a\"\n";
+  for (const auto& key : sas::kiosk::CueKeys()) {
+    if (key != "invitation") text += key + " = \"a\"\n";  // made of [invitation]
+  }
+  text += "[invitation]\n";
+  for (const auto& key : sas::kiosk::InvitationParts()) text += key + " = \"p\"\n";
   text += "[screen]\n";
   for (const auto& key : sas::kiosk::ScreenKeys()) text += key + " = \"b\"\n";
   dir.Write("xx.toml", text);
@@ -75,6 +92,11 @@ TEST_CASE("a language table with a missing or unknown key is refused naming the 
   dir.Write("zz.toml", missing);
   CHECK_THROWS_WITH(LoadLanguageTable(dir.path().string(), "zz"),
                     Catch::Contains("cues.count_2: missing"));
+  std::string no_roll = text;
+  no_roll.erase(no_roll.find("roll = \"p\"\n"), 11);
+  dir.Write("ww.toml", no_roll);
+  CHECK_THROWS_WITH(LoadLanguageTable(dir.path().string(), "ww"),
+                    Catch::Contains("invitation.roll: missing"));
 }
 
 #if defined(SAS_CUES_DIR)
@@ -90,7 +112,7 @@ TEST_CASE("the language key steps through the visitor's languages, each saying i
   std::vector<CueEvent> heard;
   engine.SetCueObserver([&](const CueEvent& cue) { heard.push_back(cue); });
   CHECK(engine.language() == "de");
-  CHECK(engine.strings().Screen("attract_title") == FromFile("de", "screen", "attract_title"));
+  CHECK(engine.strings().Invitation("scratch") == FromFile("de", "invitation", "scratch"));
   engine.OnToken(1'000'000'000, 0);
   engine.Tick(1'000'000'000);
   REQUIRE(heard.size() == 1);
@@ -110,7 +132,11 @@ TEST_CASE("the language key steps through the visitor's languages, each saying i
   engine.Tick(10'000'000'000);  // the idle reset: the next visitor hears the configured language
   CHECK(engine.session().mode() == sas::kiosk::SessionMode::kAttract);
   CHECK(engine.language() == "de");
-  // English names come from the texture's own file.
+  // On the attract screen the key takes the language shown (the configured one here: no tick
+  // has moved the attract cycle on), then steps on. English names come from the texture's own
+  // file.
+  REQUIRE(engine.NextLanguage(11'000'000'000));
+  CHECK(engine.language() == "de");
   engine.NextLanguage(11'000'000'000);
   engine.NextLanguage(11'000'000'000);
   REQUIRE(engine.language() == "en");

@@ -38,6 +38,17 @@ std::string Screen(const std::string& language, const std::string& key) {
   return table["screen"][key].value_or(std::string("?"));
 }
 
+// The attract screen's invitation, one part a line, from the table file itself.
+std::vector<std::string> Invitation(const std::string& language) {
+  const toml::table table =
+      toml::parse_file(std::string(sas::kSourceDir) + "/textures/strings/" + language + ".toml");
+  std::vector<std::string> parts;
+  for (const char* part : {"scratch", "rest", "roll", "token", "record", "language"}) {
+    parts.push_back(table["invitation"][part].value_or(std::string("?")));
+  }
+  return parts;
+}
+
 // WCAG 2 relative luminance of an sRGB colour.
 double Luminance(double r, double g, double b) {
   const auto lin = [](double c) {
@@ -206,16 +217,18 @@ void PlayScreens(Screens& screens) {
   const int w = screens.width_, h = screens.height_;
   REQUIRE(screens.view().text().Available());  // fonts-b612 (install/packages.txt)
   screens.Run(0.5);
-  screens.Check({"attract",
-                 {Screen("en", "attract_title"), Screen("en", "attract_pen"),
-                  Screen("en", "attract_token"), Screen("en", "attract_rest")}});
+  screens.Check({"attract", Invitation("en")});
   screens.engine().OnToken(static_cast<std::int64_t>(screens.now_s() * 1e9), 0);
   screens.Run(0.6);
   for (int i = 0; i < 30; ++i) {  // a stroke across the bubble wrap: the dent under the pen
     screens.Pen(w * (0.3 + 0.01 * i), h * 0.5, true);
     screens.Run(0.01);
   }
-  screens.Check({"exploring", {}});
+  // The visit's texture named on a banner as it is spoken (the token chose it).
+  screens.Check({"exploring",
+                 {toml::parse_file(std::string(sas::kSourceDir) +
+                                   "/textures/bubble_wrap/texture.toml")["name"]
+                      .value_or(std::string("?"))}});
   screens.Pen(w * 0.6, h * 0.5, false);
   screens.engine().OnRecordButton(static_cast<std::int64_t>(screens.now_s() * 1e9), true);
   screens.Run(0.05);
@@ -259,9 +272,7 @@ TEST_CASE(
 TEST_CASE("in German the visitor screens say the German table's sentences", "[render]") {
   Screens screens(1280, 720, "de");
   screens.Run(0.5);
-  screens.Check({"attract-de",
-                 {Screen("de", "attract_title"), Screen("de", "attract_pen"),
-                  Screen("de", "attract_token"), Screen("de", "attract_rest")}});
+  screens.Check({"attract-de", Invitation("de")});
   const auto now_ns = static_cast<std::int64_t>(screens.now_s() * 1e9);
   screens.engine().OnRecordButton(now_ns, true);
   screens.engine().OnRecordButton(now_ns + 1'000'000, false);
