@@ -181,25 +181,31 @@ constexpr const char* kWhy = R"(## How the choice is made, and what the figures 
 
 - **Intelligibility decides where it can be measured.** Only English has a recogniser in Debian
   (pocketsphinx, US English acoustic model, general language model, first pass only: it is not
-  told the sentences). It hears SVOX Pico far better than espeak-ng's formant voice and better
-  than every MBROLA voice and flite (the WER column). A recogniser trained on natural speech is a
-  stand-in for a listener, not a listening test; it punishes whatever sounds unlike natural speech,
-  which is what the issue asks about.
-- **The other languages have no recogniser here.** Pico is one engine with one design in all
-  five languages (a statistical, HMM-based synthesiser with a prosody model per language), and in
-  every language its figures sit where English says a voice is heard well: F0 ranges of natural
-  melody rather than espeak-ng's narrow contour, and a flatter 2-5 kHz band between harmonics
-  (breath rather than a strict line spectrum, the buzz of a formant source). MBROLA comes close on
-  these figures in some languages, but it is a diphone concatenator driven by espeak-ng's prosody
-  (the F0 and wpm columns follow espeak-ng's), and in English, the one language measured, it is
-  understood less well than Pico.
-- **What no figure here tells:** naturalness and pleasantness as a visitor hears them, how
-  each voice carries over a gallery's noise, and whether a non-English voice mispronounces a word
-  (a listening check by a speaker of the language is still worth doing once). Pico's 16 kHz rate
-  caps its band at 8 kHz; espeak-ng's 22 kHz reaches higher, but its high band is the formant
-  source's buzz, not consonant detail. Loudness and true peak are the same for every engine by
-  construction (the cue shaping); a candidate whose quietest cue is under -23 LUFS was held back
-  by the -1 dBFS peak ceiling.
+  told the sentences). The shipped English voice is the candidate it understands best (the tool
+  checks this each time it runs and says so when it no longer holds). espeak-ng's formant voice,
+  what the kiosk spoke before, is understood worst by far; the MBROLA voices, which speak
+  espeak-ng's phonemes and melody with recorded diphones, sit between. Within each accent SVOX
+  Pico beats the others (en-GB against MBROLA en1 and espeak-ng's British "en"; en-US against
+  MBROLA us1/us2 and flite slt). The recogniser's US acoustic model favours US voices, so the gap
+  between Pico's en-GB and en-US is partly accent; `en = "en-GB"` in textures/voices/choice.toml
+  switches the kiosk to the British voice. A recogniser trained on natural speech is a stand-in
+  for a listener, not a listening test.
+- **The other languages have no recogniser here**, so no figure above measures their
+  intelligibility. They get SVOX Pico because it is the same engine and design in all five
+  languages (HMM-based synthesis with a prosody model per language) and it won English; MBROLA's
+  voices differ from one another (and some break: "Saturation" warnings, F0 ranges of octave
+  jumps) and all speak espeak-ng's prosody, which English shows to be the weak part.
+- **What the other figures tell, and what not.** HF flatness separates espeak-ng's strictly
+  periodic formant source (the lowest, the buzz the issue hears) from engines built from recorded
+  speech; MBROLA's recorded diphones are flatter than Pico's vocoded voice, which does not make
+  them clearer (English says otherwise): flatness counts breath and artefacts alike. The F0 range
+  does not separate the engines much. Pico's 16 kHz rate caps its band at 8 kHz; espeak-ng's
+  22 kHz reaches higher, but with the formant source's buzz, not consonant detail. Loudness and
+  true peak are equal for every engine by construction (the cue shaping); a candidate whose
+  quietest cue is under -23 LUFS was held back by the -1 dBFS peak ceiling. Naturalness as a
+  visitor hears it, how a voice carries over a gallery's noise, and mispronounced words in the
+  four other languages are not measured: a listening check by a speaker of each language is still
+  worth doing once.
 - **Cost:** Pico is non-free (its lingware has no source), so the build never runs it; its renders
   are committed (Ogg Opus, 24 kb/s) and any cue whose sentence changed falls back to espeak-ng.
 )";
@@ -328,6 +334,13 @@ int main(int argc, char** argv) {
            << " kHz, " << Fixed(a.words_per_minute, 0) << " vs " << Fixed(b.words_per_minute, 0)
            << " wpm";
         if (code == "en") {
+          for (const auto& r : rows) {
+            if (r.edits * shipped->words < shipped->edits * r.words) {
+              std::printf("voice_survey: %s is understood better than the shipped %s: review "
+                          "textures/voices/choice.toml and the reasoning in this tool\n",
+                          r.candidate.label.c_str(), shipped_label.c_str());
+            }
+          }
           md << ", word errors " << Fixed(100.0 * double(shipped->edits) / double(shipped->words), 1)
              << " vs " << Fixed(100.0 * double(rows.front().edits) / double(rows.front().words), 1)
              << " %";
