@@ -197,12 +197,13 @@ constexpr const char* kWhy = R"(## How the choice is made, and what the figures 
   jumps) and all speak espeak-ng's prosody, which English shows to be the weak part.
 - **What the other figures tell, and what not.** HF flatness separates espeak-ng's strictly
   periodic formant source (the lowest, the buzz the issue hears) from engines built from recorded
-  speech; MBROLA's recorded diphones are flatter than Pico's vocoded voice, which does not make
-  them clearer (English says otherwise): flatness counts breath and artefacts alike. The F0 range
-  does not separate the engines much. Pico's 16 kHz rate caps its band at 8 kHz; espeak-ng's
-  22 kHz reaches higher, but with the formant source's buzz, not consonant detail. Loudness and
-  true peak are equal for every engine by construction (the cue shaping); a candidate whose
-  quietest cue is under -23 LUFS was held back by the -1 dBFS peak ceiling. Naturalness as a
+  speech; MBROLA's recorded diphones are mostly flatter than Pico's vocoded voice, which does not
+  make them clearer (English says otherwise): flatness counts breath and artefacts alike. The F0
+  range does not separate the working engines much. Pico's 16 kHz rate caps its band at 8 kHz; espeak-ng's
+  22 kHz reaches higher, but with the formant source's buzz, not consonant detail. Loudness is
+  equal for every engine by construction (the cue shaping: a candidate whose quietest cue is
+  under -23 LUFS was held back by the -1 dBFS peak ceiling); the true peak shows each
+  voice's crest, all under the ceiling. Naturalness as a
   visitor hears it, how a voice carries over a gallery's noise, and mispronounced words in the
   four other languages are not measured: a listening check by a speaker of each language is still
   worth doing once.
