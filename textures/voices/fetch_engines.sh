@@ -23,9 +23,7 @@ if [ "$what" = survey ]; then
              mbrola-de4 mbrola-de5 mbrola-de6 mbrola-de7 mbrola-fr1 mbrola-fr2 mbrola-fr3 mbrola-fr4
              mbrola-fr6 mbrola-it1 mbrola-it2 mbrola-it3 mbrola-it4 mbrola-es1 mbrola-es2 mbrola-es3
              mbrola-es4
-             flite libflite1 festival festvox-us-slt-hts festvox-itapc16k festvox-italp16k
-             festlex-cmu festlex-poslex festlex-ifd libestools2.5 libhtsengine1
-             pocketsphinx libpocketsphinx3 libsphinxbase3 pocketsphinx-en-us)
+             flite libflite1 pocketsphinx libpocketsphinx3 libsphinxbase3 pocketsphinx-en-us)
 fi
 (cd "$apt_dir/archives" && apt-get "${apt_opts[@]}" -qq download "${packages[@]}")
 for deb in "$apt_dir"/archives/*.deb; do dpkg -x "$deb" "$dest/root"; done
