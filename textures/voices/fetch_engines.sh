@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Dev-only: fetch the candidate speech engines that Debian 12 ships outside this machine's apt
 # sources (SVOX Pico: non-free; MBROLA and its voices: contrib/non-free), plus the ones in main that
-# the voice survey compares (flite, festival voices, pocketsphinx for the English recognition check),
+# the voice survey compares (flite, pocketsphinx for the English recognition check),
 # as .debs through a temporary sources list, and unpack them with dpkg -x into DEST. Nothing is
 # installed into the system and the system's apt lists are left alone.
 # Usage: fetch_engines.sh DEST [pico|survey]   (pico: only what regenerating the cues needs)
