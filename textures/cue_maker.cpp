@@ -1,180 +1,142 @@
-// cue_maker: speaks the kiosk's spoken cues with espeak-ng at build time (for visitors who cannot
-// see the screen), in every language of textures/strings/ (files/strings.h). For each language
-// <code> it writes <out>/<code>/<key>.wav and, next to it, <key>.txt with the sentence it spoke
-// (the kiosk reports it with each cue it plays, so a test can check what was heard against the
-// string table). Keys: each message of the table's [cues], and for each texture folder in
-// <textures_dir> (a texture.toml inside) <folder>_name and <folder>_description: from the table's
-// [textures], else the texture.toml's own (English) name and description. Chain per cue:
-//   espeak-ng -v <voice> -s <wpm> -w tmp.wav "<text>"  (22.05 kHz)
-//   -> surface::ReadAudioFile: mono, windowed-sinc resampled to 48 kHz
-//   -> trim leading/trailing silence (below -40 dB re the peak), keep 20 ms either side
-//   -> loudness-normalise to kCueLoudnessLufs (BS.1770 K-weighted, surface/loudness.h), then
-//      lower further if needed so the peak stays at or below kCuePeakDbfs (never clipped)
-//   -> 5 ms raised-cosine fades -> 24-bit PCM WAV, 48 kHz mono.
-// Normalising here, in our own code, keeps the build free of sox.
+// cue_maker: makes the kiosk's spoken cues at build time (for visitors who cannot see the screen),
+// in every language of textures/strings/ (files/strings.h). For each language <code> it writes
+// <out>/<code>/<key>.wav and, next to it, <key>.txt with the sentence it speaks (the kiosk reports
+// it with each cue it plays, so a test can check what was heard against the string table). Keys:
+// each message of the table's [cues], and <folder>_name / <folder>_description for each texture
+// folder of --textures-dir (cue_voice.h).
 //
-// Usage: cue_maker --espeak <path> --strings <dir> --textures-dir <dir> --out <dir>
+// Each cue's voice: the committed render in --renders (<code>/<key>.opus, spoken by the engine
+// docs/voices.md chose for that language) while its <key>.txt equals the table's sentence; else
+// espeak-ng with the table's [voice] (a changed sentence or a new key is never spoken with stale
+// words; the build says once which cues fell back). Then, for every cue alike: 48 kHz mono,
+// silence trimmed, loudness-normalised under a peak ceiling, faded (cues::ShapeCue), 24-bit WAV.
+//
+// --render-out DIR re-speaks the committed renders instead: for each language of --choice
+// (textures/voices/choice.toml) with SVOX Pico from --pico-root (textures/voices/fetch_engines.sh
+// unpacks Debian's non-free packages there), into DIR/<code>/<key>.opus + .txt. The build target
+// regenerate_voices runs both steps.
+//
+// Exit status: 0 ok, 1 runtime error, 2 usage error.
 
-#include <spawn.h>
-#include <sys/wait.h>
+#include <CLI/CLI.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cue_voice.h"
 #include "files/strings.h"
-#include "surface/audio_file.h"
-#include "surface/cue_library.h"
-#include "surface/loudness.h"
-#include "surface/texture_file.h"
 #include "surface/wav_writer.h"
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
+using sas::cues::CueSentence;
 
-constexpr double kRateHz = 48000.0;
-// EBU R 128's programme target: a cue sits at the level of broadcast speech; the exhibit's strokes
-// at the kiosk's default gains are about -24 LUFS (calibration/texture_levels.h), so cues and
-// textures are heard at a similar level.
-constexpr double kCueLoudnessLufs = -23.0;
-constexpr double kCuePeakDbfs = -1.0;
-constexpr double kTrimBelowPeakDb = -40.0;
-constexpr double kMarginS = 0.02;
-constexpr double kFadeS = 0.005;
-
-struct Cue {
-  std::string key;  // file name without .wav
-  std::string text;
-};
-
-void Speak(const std::string& espeak, const std::string& voice, int wpm, const std::string& text,
-           const std::string& wav_path) {
-  const std::string speed = std::to_string(wpm);
-  std::vector<std::string> args = {espeak, "-v", voice, "-s", speed, "-w", wav_path, text};
-  std::vector<char*> argv;
-  for (auto& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, espeak.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
-    throw std::runtime_error("cannot run " + espeak);
+int Render(const std::string& strings_dir, const std::string& textures_dir,
+           const std::string& choice_path, const std::string& pico_root,
+           const std::string& render_out) {
+  sas::cues::PicoSpeaker pico(pico_root);
+  std::size_t made = 0;
+  for (const auto& [code, voice] : sas::cues::LoadPicoChoice(choice_path)) {
+    const auto table = sas::kiosk::LoadLanguageTable(strings_dir, code);
+    const fs::path dir = fs::path(render_out) / code;
+    // Old renders go: a key the table no longer has must not linger in the repository.
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const CueSentence& cue : sas::cues::CueSentences(table, textures_dir)) {
+      sas::cues::WriteRender((dir / (cue.key + ".opus")).string(), pico.Speak(voice, cue.text));
+      sas::cues::WriteText((dir / (cue.key + ".txt")).string(), cue.text);
+      ++made;
+    }
   }
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error(espeak + " failed for \"" + text + "\"");
-  }
+  std::printf("cue_maker: %zu renders with SVOX Pico in %s\n", made, render_out.c_str());
+  return 0;
 }
 
-std::vector<float> Shape(std::vector<float> x) {
-  float peak = 0.0f;
-  for (float v : x) peak = std::max(peak, std::fabs(v));
-  if (peak <= 0.0f) throw std::runtime_error("espeak-ng produced silence");
-  const float floor = peak * static_cast<float>(std::pow(10.0, kTrimBelowPeakDb / 20.0));
-  std::size_t first = 0, last = x.size();
-  while (first < x.size() && std::fabs(x[first]) < floor) ++first;
-  while (last > first && std::fabs(x[last - 1]) < floor) --last;
-  const auto margin = static_cast<std::size_t>(kMarginS * kRateHz);
-  first = first > margin ? first - margin : 0;
-  last = std::min(x.size(), last + margin);
-  x = std::vector<float>(x.begin() + static_cast<std::ptrdiff_t>(first),
-                         x.begin() + static_cast<std::ptrdiff_t>(last));
-
-  const double loudness = sas::surface::KWeightedLoudnessDb(x, kRateHz, 0, x.size());
-  double gain_db = kCueLoudnessLufs - loudness;
-  double new_peak = 0.0;
-  for (float v : x) new_peak = std::max(new_peak, static_cast<double>(std::fabs(v)));
-  gain_db = std::min(gain_db, kCuePeakDbfs - 20.0 * std::log10(new_peak));
-  const double gain = std::pow(10.0, gain_db / 20.0);
-  const auto fade = static_cast<std::size_t>(kFadeS * kRateHz);
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    double w = 1.0;
-    const std::size_t edge = std::min(i, x.size() - 1 - i);
-    if (edge < fade) {
-      w = 0.5 -
-          0.5 * std::cos(std::numbers::pi * static_cast<double>(edge) / static_cast<double>(fade));
+int Build(const std::string& espeak, const std::string& strings_dir,
+          const std::string& textures_dir, const std::string& renders_dir,
+          const std::string& out_dir) {
+  std::size_t made = 0, rendered = 0;
+  std::vector<std::string> fell_back;
+  for (const auto& code : sas::kiosk::KioskLanguages()) {
+    const auto table = sas::kiosk::LoadLanguageTable(strings_dir, code);
+    const fs::path dir = fs::path(out_dir) / code;
+    fs::create_directories(dir);
+    // Only a language that has committed renders can fall back from them.
+    const bool has_renders = !renders_dir.empty() && fs::is_directory(fs::path(renders_dir) / code);
+    for (const CueSentence& cue : sas::cues::CueSentences(table, textures_dir)) {
+      const auto choice = sas::cues::ChooseRender(renders_dir, code, cue.key, cue.text);
+      sas::cues::Speech speech;
+      if (choice.use_render) {
+        speech = sas::cues::ReadRender(choice.audio_path);
+        ++rendered;
+      } else {
+        speech = sas::cues::SpeakEspeak(espeak, table.espeak_voice, table.words_per_minute,
+                                        cue.text, (dir / (cue.key + ".espeak.wav")).string());
+        if (has_renders) fell_back.push_back(code + "/" + cue.key + " (" + choice.why + ")");
+      }
+      const std::vector<float> shaped = sas::cues::ShapeCue(speech);
+      sas::surface::WriteWav((dir / (cue.key + ".wav")).string(), shaped.data(), shaped.size(), 1,
+                             static_cast<int>(sas::cues::kCueRateHz),
+                             sas::surface::WavFormat::kPcm24);
+      sas::cues::WriteText((dir / (cue.key + ".txt")).string(), cue.text);
+      ++made;
     }
-    x[i] = static_cast<float>(x[i] * gain * w);
   }
-  return x;
+  std::printf("cue_maker: %zu spoken cues in %zu languages in %s (%zu from committed renders)\n",
+              made, sas::kiosk::KioskLanguages().size(), out_dir.c_str(), rendered);
+  if (!fell_back.empty()) {
+    std::string list;
+    for (const auto& item : fell_back) list += (list.empty() ? "" : ", ") + item;
+    std::printf("cue_maker: %zu cues spoken with espeak-ng instead of their committed voice: %s. "
+                "Re-speak them: cmake --build <build> --target regenerate_voices\n",
+                fell_back.size(), list.c_str());
+  }
+  return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string espeak, strings_dir, textures_dir, out_dir;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (flag == "--espeak") {
-      espeak = argv[i + 1];
-    } else if (flag == "--strings") {
-      strings_dir = argv[i + 1];
-    } else if (flag == "--textures-dir") {
-      textures_dir = argv[i + 1];
-    } else if (flag == "--out") {
-      out_dir = argv[i + 1];
+  CLI::App app{"Makes the kiosk's spoken cues: committed renders where their sentence is current, "
+               "espeak-ng for the rest; or re-speaks the committed renders (--render-out).",
+               "cue_maker"};
+  std::string espeak, strings_dir, textures_dir, out_dir, renders_dir, render_out, pico_root,
+      choice_path;
+  app.add_option("--espeak", espeak, "espeak-ng program (build mode)");
+  app.add_option("--strings", strings_dir, "the string tables' folder (textures/strings)")
+      ->required();
+  app.add_option("--textures-dir", textures_dir, "the texture folders' parent (textures)")
+      ->required();
+  app.add_option("--out", out_dir, "write <out>/<language>/<key>.wav and .txt (build mode)");
+  app.add_option("--renders", renders_dir, "committed renders (textures/voices), build mode");
+  app.add_option("--render-out", render_out,
+                 "re-speak the committed renders into this folder instead of building cues");
+  app.add_option("--pico-root", pico_root, "SVOX Pico unpacked by fetch_engines.sh (render mode)");
+  app.add_option("--choice", choice_path, "which languages Pico speaks (textures/voices/choice.toml)");
+  try {
+    app.parse(argc, argv);
+    const bool render = !render_out.empty();
+    if (render && (pico_root.empty() || choice_path.empty())) {
+      throw CLI::ValidationError("--render-out", "needs --pico-root and --choice");
     }
-  }
-  if (espeak.empty() || strings_dir.empty() || textures_dir.empty() || out_dir.empty()) {
-    std::fprintf(stderr,
-                 "usage: cue_maker --espeak <path> --strings <dir> --textures-dir <dir> "
-                 "--out <dir>\n");
+    if (!render && (espeak.empty() || out_dir.empty())) {
+      throw CLI::ValidationError("--out", "building cues needs --espeak and --out");
+    }
+  } catch (const CLI::Success& done) {
+    return app.exit(done);  // --help: exit 0
+  } catch (const CLI::ParseError& bad) {
+    app.exit(bad);
     return 2;
   }
   try {
-    std::vector<std::string> folders;
-    for (const auto& entry : fs::directory_iterator(textures_dir)) {
-      if (entry.is_directory() && fs::is_regular_file(entry.path() / "texture.toml")) {
-        folders.push_back(entry.path().filename().string());
-      }
-    }
-    std::sort(folders.begin(), folders.end());
-    std::vector<sas::surface::TextureFile> textures;
-    for (const auto& folder : folders) {
-      textures.push_back(sas::surface::LoadTextureFile(
-          (fs::path(textures_dir) / folder / "texture.toml").string()));
-    }
-    std::size_t made = 0;
-    for (const auto& code : sas::kiosk::KioskLanguages()) {
-      const auto table = sas::kiosk::LoadLanguageTable(strings_dir, code);
-      std::vector<Cue> list;
-      for (std::size_t t = 0; t < folders.size(); ++t) {
-        list.push_back(
-            {folders[t] + "_name", table.CueText(folders[t] + "_name", textures[t].name)});
-        list.push_back({folders[t] + "_description",
-                        table.CueText(folders[t] + "_description", textures[t].description)});
-      }
-      for (const auto& key : sas::kiosk::CueKeys()) list.push_back({key, table.CueText(key)});
-      const fs::path dir = fs::path(out_dir) / code;
-      fs::create_directories(dir);
-      for (const auto& cue : list) {
-        const std::string raw = (dir / (cue.key + ".espeak.wav")).string();
-        Speak(espeak, table.espeak_voice, table.words_per_minute, cue.text, raw);
-        sas::surface::AudioReadLimits limits;
-        limits.target_rate_hz = kRateHz;
-        const auto clip = sas::surface::ReadAudioFile(raw, limits);
-        fs::remove(raw);
-        const std::vector<float> shaped = Shape(clip.samples);
-        sas::surface::WriteWav((dir / (cue.key + ".wav")).string(), shaped.data(), shaped.size(), 1,
-                               static_cast<int>(kRateHz), sas::surface::WavFormat::kPcm24);
-        std::FILE* text = std::fopen((dir / (cue.key + ".txt")).c_str(), "w");
-        if (text == nullptr) throw std::runtime_error("cannot write " + (dir / cue.key).string());
-        std::fprintf(text, "%s\n", cue.text.c_str());
-        std::fclose(text);
-        ++made;
-      }
-    }
-    std::printf("cue_maker: %zu spoken cues in %zu languages in %s\n", made,
-                sas::kiosk::KioskLanguages().size(), out_dir.c_str());
+    if (!render_out.empty()) return Render(strings_dir, textures_dir, choice_path, pico_root, render_out);
+    return Build(espeak, strings_dir, textures_dir, renders_dir, out_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cue_maker: %s\n", e.what());
     return 1;
   }
-  return 0;
 }
