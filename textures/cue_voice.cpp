@@ -31,10 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kTrimBelowPeakDb = -40.0;
-constexpr double kMarginS = 0.02;
-constexpr double kFadeS = 0.005;
-
 // The first path matching a shell pattern, or "".
 std::string FirstMatch(const std::string& pattern) {
   glob_t found{};
@@ -267,36 +263,11 @@ std::vector<float> ShapeCue(const Speech& speech) {
   std::vector<float> x = speech.rate_hz == kCueRateHz
                              ? speech.samples
                              : surface::Resample(speech.samples, speech.rate_hz, kCueRateHz);
-  float peak = 0.0f;
-  for (float v : x) peak = std::max(peak, std::fabs(v));
-  if (peak <= 0.0f) throw std::runtime_error("the engine produced silence");
-  const float floor = peak * static_cast<float>(std::pow(10.0, kTrimBelowPeakDb / 20.0));
-  std::size_t first = 0, last = x.size();
-  while (first < x.size() && std::fabs(x[first]) < floor) ++first;
-  while (last > first && std::fabs(x[last - 1]) < floor) --last;
-  const auto margin = static_cast<std::size_t>(kMarginS * kCueRateHz);
-  first = first > margin ? first - margin : 0;
-  last = std::min(x.size(), last + margin);
-  x = std::vector<float>(x.begin() + static_cast<std::ptrdiff_t>(first),
-                         x.begin() + static_cast<std::ptrdiff_t>(last));
-
-  const double loudness = surface::KWeightedLoudnessDb(x, kCueRateHz, 0, x.size());
-  double gain_db = kCueLoudnessLufs - loudness;
-  double new_peak = 0.0;
-  for (float v : x) new_peak = std::max(new_peak, static_cast<double>(std::fabs(v)));
-  gain_db = std::min(gain_db, kCuePeakDbfs - 20.0 * std::log10(new_peak));
-  const double gain = std::pow(10.0, gain_db / 20.0);
-  const auto fade = static_cast<std::size_t>(kFadeS * kCueRateHz);
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    double w = 1.0;
-    const std::size_t edge = std::min(i, x.size() - 1 - i);
-    if (edge < fade) {
-      w = 0.5 -
-          0.5 * std::cos(std::numbers::pi * static_cast<double>(edge) / static_cast<double>(fade));
-    }
-    x[i] = static_cast<float>(x[i] * gain * w);
+  try {
+    return surface::ShapeCue(std::move(x), kCueRateHz).samples;
+  } catch (const std::runtime_error&) {
+    throw std::runtime_error("the engine produced silence");
   }
-  return x;
 }
 
 RenderChoice ChooseRender(const std::string& renders_dir, const std::string& language,

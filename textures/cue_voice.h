@@ -16,15 +16,15 @@
 #include <vector>
 
 #include "files/strings.h"
+#include "surface/cue_library.h"
 
 namespace sas::cues {
 
 inline constexpr double kCueRateHz = 48000.0;
-// EBU R 128's programme target: a cue sits at the level of broadcast speech; the exhibit's strokes
-// at the kiosk's default gains are about -24 LUFS (calibration/texture_levels.h), so cues and
-// textures are heard at a similar level.
-inline constexpr double kCueLoudnessLufs = -23.0;
-inline constexpr double kCuePeakDbfs = -1.0;
+// Every cue is levelled as staff recordings are (surface/cue_library.h: ShapeCue and its
+// constants), so both are heard at one level.
+using surface::kCueLoudnessLufs;
+using surface::kCuePeakDbfs;
 
 struct CueSentence {
   std::string key;  // file name without extension
