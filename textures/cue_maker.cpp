@@ -13,8 +13,9 @@
 //
 // --render-out DIR re-speaks the committed renders instead: for each language of --choice
 // (textures/voices/choice.toml) with SVOX Pico from --pico-root (textures/voices/fetch_engines.sh
-// unpacks Debian's non-free packages there), into DIR/<code>/<key>.opus + .txt. The build target
-// regenerate_voices runs both steps.
+// unpacks Debian's non-free packages there), into DIR/<code>/<key>.opus + .txt: the cues whose
+// render is missing or whose sentence changed, at choice.toml's [rate_percent] for their key. The
+// build target regenerate_voices runs both steps.
 //
 // Exit status: 0 ok, 1 runtime error, 2 usage error.
 
@@ -22,6 +23,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,20 +41,36 @@ int Render(const std::string& strings_dir, const std::string& textures_dir,
            const std::string& choice_path, const std::string& pico_root,
            const std::string& render_out) {
   sas::cues::PicoSpeaker pico(pico_root);
-  std::size_t made = 0;
+  const auto rates = sas::cues::LoadPicoRates(choice_path);
+  std::size_t made = 0, kept = 0;
   for (const auto& [code, voice] : sas::cues::LoadPicoChoice(choice_path)) {
     const auto table = sas::kiosk::LoadLanguageTable(strings_dir, code);
     const fs::path dir = fs::path(render_out) / code;
-    // Old renders go: a key the table no longer has must not linger in the repository.
-    fs::remove_all(dir);
     fs::create_directories(dir);
+    std::set<std::string> current;
     for (const CueSentence& cue : sas::cues::CueSentences(table, textures_dir)) {
-      sas::cues::WriteRender((dir / (cue.key + ".opus")).string(), pico.Speak(voice, cue.text));
-      sas::cues::WriteText((dir / (cue.key + ".txt")).string(), cue.text);
+      current.insert(cue.key + ".opus");
+      current.insert(cue.key + ".txt");
+      const fs::path audio = dir / (cue.key + ".opus"), text = dir / (cue.key + ".txt");
+      // A render whose sentence is unchanged is kept byte for byte (Opus encodes differently each
+      // time: re-speaking all would rewrite every file in the repository). Delete one to redo it.
+      if (fs::exists(audio) && fs::exists(text) && sas::cues::ReadText(text.string()) == cue.text) {
+        ++kept;
+        continue;
+      }
+      const auto rate = rates.find(cue.key);
+      sas::cues::WriteRender(audio.string(),
+                             pico.Speak(voice, cue.text, rate == rates.end() ? 100 : rate->second));
+      sas::cues::WriteText(text.string(), cue.text);
       ++made;
     }
+    // Old renders go: a key the table no longer has must not linger in the repository.
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (!current.contains(entry.path().filename().string())) fs::remove(entry.path());
+    }
   }
-  std::printf("cue_maker: %zu renders with SVOX Pico in %s\n", made, render_out.c_str());
+  std::printf("cue_maker: %zu renders with SVOX Pico in %s, %zu unchanged kept\n", made,
+              render_out.c_str(), kept);
   return 0;
 }
 

@@ -230,14 +230,19 @@ void PicoSpeaker::Load(const std::string& voice) {
   voice_ = voice;
 }
 
-Speech PicoSpeaker::Speak(const std::string& voice, const std::string& text) {
+Speech PicoSpeaker::Speak(const std::string& voice, const std::string& text, int rate_percent) {
   if (voice != voice_) Load(voice);
   Api& api = *api_;
   Speech speech;
   speech.rate_hz = kPicoRateHz;
+  // Pico's markup sets the speed; the sentence itself stays as the table has it.
+  const std::string marked =
+      rate_percent == 100
+          ? text
+          : "<speed level=\"" + std::to_string(rate_percent) + "\">" + text + "</speed>";
   // The text goes in with its terminating zero, which tells Pico the input is complete.
-  const auto* next = reinterpret_cast<const unsigned char*>(text.c_str());
-  auto left = static_cast<short>(text.size() + 1);
+  const auto* next = reinterpret_cast<const unsigned char*>(marked.c_str());
+  auto left = static_cast<short>(marked.size() + 1);
   short pcm[512];
   while (left > 0) {
     short put = 0;
@@ -332,6 +337,22 @@ std::map<std::string, std::string> LoadPicoChoice(const std::string& path) {
     }
   }
   return choice;
+}
+
+std::map<std::string, int> LoadPicoRates(const std::string& path) {
+  const toml::table root = toml::parse_file(path);
+  std::map<std::string, int> rates;
+  if (const toml::table* table = root["rate_percent"].as_table()) {
+    for (const auto& [key, value] : *table) {
+      const auto percent = value.value<std::int64_t>();
+      if (!percent || *percent < 50 || *percent > 200) {
+        throw std::runtime_error(path + ": rate_percent." + std::string(key.str()) +
+                                 ": a whole number from 50 to 200");
+      }
+      rates[std::string(key.str())] = static_cast<int>(*percent);
+    }
+  }
+  return rates;
 }
 
 std::string ReadText(const std::string& path) {

@@ -66,7 +66,8 @@ class PicoSpeaker {
   PicoSpeaker(const PicoSpeaker&) = delete;
   PicoSpeaker& operator=(const PicoSpeaker&) = delete;
   // `voice` is Pico's language: en-GB, en-US, de-DE, fr-FR, it-IT, es-ES.
-  Speech Speak(const std::string& voice, const std::string& text);
+  // `rate_percent`: Pico's own speed markup (100: the voice's natural rate).
+  Speech Speak(const std::string& voice, const std::string& text, int rate_percent = 100);
 
  private:
   struct Api;
@@ -99,6 +100,8 @@ Speech ReadRender(const std::string& audio_path);
 // textures/voices/choice.toml: [pico] <language> = "<Pico voice>" for each language whose
 // committed renders SVOX Pico speaks.
 std::map<std::string, std::string> LoadPicoChoice(const std::string& path);
+// choice.toml's [rate_percent]: cue key -> speaking rate in percent (a key not listed: 100).
+std::map<std::string, int> LoadPicoRates(const std::string& path);
 
 // The whole file as a string, its trailing newlines removed.
 std::string ReadText(const std::string& path);
