@@ -240,7 +240,7 @@ TEST_CASE("a mouse drag becomes pointer down, moves and up at the pushed pixel p
           "[render]") {
   OffscreenDriver driver;
   sas::ui::KioskWindowOptions options;
-  options.mouse_pressure = 0.7f;
+  options.press.light = options.press.firm = 0.7f;  // a constant press, to check it is carried
   KioskWindow window(options);
   OpenSettled(window);
   PushMouseMotion(10, 20);  // hover
