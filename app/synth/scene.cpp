@@ -851,6 +851,7 @@ SceneProbeState Scene::probe_state() const {
   const Impl& s = *impl_;
   SceneProbeState st;
   st.unloading = s.unloading;
+  st.gliding = s.probe.active && s.glide_pos < s.glide_samples;
   st.active = s.probe.active;
   st.height_m = s.probe.height_m;
   st.velocity_mps = s.probe.velocity_mps;

@@ -10,10 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "kiosk/kiosk_control.h"
-#include "kiosk/kiosk_engine.h"
-#include "platform/audio/audio_output.h"
-#include "platform/pen/pen_source.h"
+#include "tablet_rig.h"
 
 using namespace sas;
 
@@ -21,30 +18,10 @@ namespace {
 
 constexpr std::int64_t kBlockNs = 2'666'667;  // 128 frames at 48 kHz
 
-struct QuietLogger : platform::Logger {
-  QuietLogger() { SetEchoToStderr(false); }
-};
-
-kiosk::KioskEngineOptions EngineOptions() {
-  kiosk::KioskEngineOptions options;
-  options.virtual_clock = true;
-  options.cues_dir = "/nonexistent";  // only the synth in the output
-  return options;
-}
-
-// The kiosk with offline audio, keys for tokens and a fake tablet, under its control loop; each
-// pen reading the loop drains goes to the engine as the live kiosk hands it on (with `forced`, as
-// the headless visit's roll strokes).
-struct Rig {
-  Rig()
-      : engine(EngineOptions()),
-        output(engine.audio(), platform::AudioOutputConfig{}),
-        fake(new platform::FakePenSource(true)),
-        pen(platform::OpenPen({}, board, std::unique_ptr<platform::PenSource>(fake))),
-        control(engine, {&output, pen.get(), &switches}, log) {
-    REQUIRE(output.Start());
-    REQUIRE(pen != nullptr);
-  }
+// The kiosk under its control loop with a fake tablet; each pen reading the loop drains goes to
+// the engine as the live kiosk hands it on (with `forced`, as the headless visit's roll strokes).
+struct Rig : test::TabletRig {
+  Rig() : TabletRig(std::make_unique<platform::FakePenSource>(true)) {}
   // One block of the kiosk's life: the tablet's reading (if any) from half a block ago, the
   // control loop's pass now, then the audio block that plays it.
   void Block(std::optional<platform::PenReading> reading = {}) {
@@ -58,14 +35,6 @@ struct Rig {
     ++blocks;
   }
 
-  kiosk::KioskEngine engine;
-  platform::OfflineAudioOutput output;
-  platform::SwitchInputs switches;
-  QuietLogger log;
-  platform::DeviceStatusBoard board{log};
-  platform::FakePenSource* fake;
-  std::unique_ptr<platform::PenSource> pen;
-  kiosk::KioskControl control;
   std::optional<synth::ProbeStyle> forced;
   std::int64_t blocks = 0;
 };

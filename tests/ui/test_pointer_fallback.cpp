@@ -13,51 +13,24 @@
 #include <vector>
 
 #include "kiosk/kiosk_engine.h"
+#include "sdl_test_events.h"
 #include "ui/kiosk_window.h"
 
 using sas::kiosk::KioskEngine;
 using sas::platform::PenReading;
+using sas::test::OffscreenDriver;
+using sas::test::PushKey;
+using sas::test::PushMouseButton;
+using sas::test::PushMouseMotion;
 using sas::ui::KioskWindow;
 using sas::ui::UiEvent;
 
 namespace {
 
-struct OffscreenDriver {
-  OffscreenDriver() { setenv("SDL_VIDEODRIVER", "offscreen", 1); }
-  ~OffscreenDriver() { unsetenv("SDL_VIDEODRIVER"); }
-};
-
 std::int64_t NowNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
-}
-
-void PushButton(int x, int y, Uint8 button, bool down) {
-  SDL_Event e{};
-  e.type = down ? SDL_MOUSEBUTTONDOWN : SDL_MOUSEBUTTONUP;
-  e.button.button = button;
-  e.button.state = down ? SDL_PRESSED : SDL_RELEASED;
-  e.button.x = x;
-  e.button.y = y;
-  REQUIRE(SDL_PushEvent(&e) == 1);
-}
-
-void PushMotion(int x, int y) {
-  SDL_Event e{};
-  e.type = SDL_MOUSEMOTION;
-  e.motion.x = x;
-  e.motion.y = y;
-  REQUIRE(SDL_PushEvent(&e) == 1);
-}
-
-void PushKey(SDL_Keycode key, bool down) {
-  SDL_Event e{};
-  e.type = down ? SDL_KEYDOWN : SDL_KEYUP;
-  e.key.state = down ? SDL_PRESSED : SDL_RELEASED;
-  e.key.keysym.sym = key;
-  e.key.keysym.scancode = SDL_GetScancodeFromKey(key);
-  REQUIRE(SDL_PushEvent(&e) == 1);
 }
 
 // The window and the engine wired as the live loop wires them (no tablet: the pointer drives).
@@ -141,8 +114,8 @@ TEST_CASE(
   const auto [hx, hy] = kiosk.BubbleOnScreen(1, &held_bubble);
 
   // A quick click: down and up at once, the press as light as it starts.
-  PushButton(qx, qy, SDL_BUTTON_LEFT, true);
-  PushButton(qx, qy, SDL_BUTTON_LEFT, false);
+  PushMouseButton(qx, qy, true, SDL_BUTTON_LEFT);
+  PushMouseButton(qx, qy, false, SDL_BUTTON_LEFT);
   const auto click = kiosk.Poll(0);
   REQUIRE(click.size() == 2);
   CHECK(click[0].tip_down);
@@ -151,7 +124,7 @@ TEST_CASE(
 
   // Held still on another bubble: the window reports the growing press while nothing moves,
   // until the pop (a generous deadline only stops a kiosk that never pops it).
-  PushButton(hx, hy, SDL_BUTTON_LEFT, true);
+  PushMouseButton(hx, hy, true, SDL_BUTTON_LEFT);
   std::int64_t down_ns = -1, popped_ns = -1;
   double popped_pressure = 0.0;
   int resting_reports = 0;
@@ -166,7 +139,7 @@ TEST_CASE(
       }
     });
   }
-  PushButton(hx, hy, SDL_BUTTON_LEFT, false);
+  PushMouseButton(hx, hy, false, SDL_BUTTON_LEFT);
   kiosk.Poll(0);
   REQUIRE(popped_ns >= 0);
   CHECK(kiosk.engine->popped_bubbles() == 1);
@@ -181,8 +154,8 @@ TEST_CASE(
 
 TEST_CASE(
     "pointer fallback: a right-button drag, and a left-button drag while Space is held, roll the "
-    "stroke through the window and the engine; the left button alone strokes with the texture's "
-    "own probe",
+    "stroke through the window and the engine, the left button alone with the texture's own "
+    "probe",
     "[render]") {
   Fallback kiosk;
   kiosk.Open();
@@ -191,8 +164,8 @@ TEST_CASE(
   // (A busy machine may add the resting press's report after a poll's events: only the events'
   // own readings and the button readings are looked at.)
   const auto drag = [&](Uint8 button, int x0) {
-    PushButton(x0, y, button, true);
-    for (int i = 1; i <= 4; ++i) PushMotion(x0 + 10 * i, y);
+    PushMouseButton(x0, y, true, button);
+    for (int i = 1; i <= 4; ++i) PushMouseMotion(x0 + 10 * i, y);
     auto readings = kiosk.Poll(0);
     REQUIRE(readings.size() >= 5);
     readings.resize(5);
@@ -207,7 +180,7 @@ TEST_CASE(
     return PenReading{};
   };
   const auto lift = [&](Uint8 button, int x) {
-    PushButton(x, y, button, false);
+    PushMouseButton(x, y, false, button);
     kiosk.Poll(0);
   };
 
