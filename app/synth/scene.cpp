@@ -132,7 +132,7 @@ struct Scene::Impl {
   double output_gain = 1.0;       // max(|sound gain|, |haptic gain|, 1)
   double release_gain = 0.0;  // output_gain · Σ |g_i| / (m_i ω0_i): pickup per newton released
   double max_abs_gain = 0.0;  // output_gain · max |g_i|
-  double felt_per_newton = 0.0;   // contact force -> transducer input (RenderFrame)
+  double felt_per_newton = 0.0;  // contact force -> transducer input (RenderFrame)
   double felt_noise_share = 1.0;  // FrictionParams::felt_noise_share
   // The pen's body (ProbeParams::body_mass_kg > 0, impact on): a second mass above the nib (the
   // probe), joined by the pressure sensor's spring; the hand's push acts on the body. Heights as
@@ -148,7 +148,7 @@ struct Scene::Impl {
   ProbeCommand gesture{};
   double x_m = 0.0, y_m = 0.0;
   double step_x_m = 0.0, step_y_m = 0.0;  // pen movement per frame (set with the gesture)
-  double surface_m = 0.0;  // felt profile at the probe position (end of the last sample)
+  double surface_m = 0.0;     // felt profile at the probe position (end of the last sample)
   // A style switch's glide (kStyleGlideS): the old profile's height above the new one at the
   // switch, faded out over glide_samples; glide_pos counts the samples done.
   double glide_m = 0.0;
@@ -382,9 +382,10 @@ struct Scene::Impl {
     // corner rises with the speed through the modes, so a faster rub is brighter as well as
     // louder. (A scrape's noise already renews every ℓ.) Only on a rough surface, where ℓ is
     // the asperities' scale: on a polished one (glass) the junctions are the nib's own.
-    noise_junction_step = patch_noise && r.rms_m > 0.0 && noise_length > r.length_m
-                              ? 1.0 - std::exp(-ds / r.length_m)
-                              : 0.0;
+    noise_junction_step =
+        patch_noise && r.rms_m > 0.0 && noise_length > r.length_m
+            ? 1.0 - std::exp(-ds / r.length_m)
+            : 0.0;
     contact_step = 1.0 - std::exp(-ds / ContactLength());
   }
 
@@ -464,7 +465,8 @@ struct Scene::Impl {
     // relative to the hand, which rises while the pen is lifted.
     const double hand_mps = unloading ? HandRiseMps() : 0.0;
     const double acc =
-        (TipPush() - Push() - kGripDampingNsPerM * (body_velocity_mps - hand_mps)) * body_inv_mass;
+        (TipPush() - Push() - kGripDampingNsPerM * (body_velocity_mps - hand_mps)) *
+        body_inv_mass;
     body_velocity_mps += acc / fs;
     body_height_m += body_velocity_mps / fs;
   }
