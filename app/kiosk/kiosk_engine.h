@@ -204,6 +204,8 @@ class KioskEngine final {
   const std::string& language() const { return strings().code; }
   // A texture's name in the current language.
   std::string TextureName(int texture) const;
+  // The probe style of the stroke the pen plays (or last played): a held barrel button rolls.
+  synth::ProbeStyle stroke_style() const { return stroke_style_; }
   // The per-stroke correction last handed to the scene under the pen (dB).
   StrokeCorrection stroke_correction() const { return stroke_correction_; }
   const StrokeGainMap& stroke_gains() const { return stroke_gains_; }
@@ -305,6 +307,7 @@ class KioskEngine final {
   platform::PenReading last_pen_{};
   double last_fx_ = 0.0, last_fy_ = 0.0;
   double dir_x_ = 1.0, dir_y_ = 0.0;
+  double last_velocity_mps_ = 0.0;  // of the last position report (a button reading keeps it)
   StrokeGainMap stroke_gains_;
   StrokeTracker stroke_;
   synth::ProbeStyle stroke_style_ = synth::ProbeStyle::kScrape;

@@ -88,14 +88,31 @@ void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::Pr
   double fx = 0.0, fy = 0.0;
   ScreenToField(pen.x_px, pen.y_px, &fx, &fy);
   const double pitch = field.pitch_m();
-  const double x_m = fx * pitch, y_m = fy * pitch;
+  double x_m = fx * pitch, y_m = fy * pitch;
   const double pressure = std::clamp(pen.pressure, 0.0, 1.0);
 
   synth::ProbeCommand command;
   command.tip_down = pen.tip_down && pressure > 0.0;
+  // A barrel button pressed or released mid-stroke comes between two position reports and
+  // carries the last one: the stroke goes on from where the scene has carried the probe since, at
+  // the same speed, so the style switch neither stops nor pulls back the probe (either would be a
+  // step under the tip). The next report's speed then spans the whole interval again. Long after
+  // the last report the pen has stopped: then the button's reading is an ordinary one.
+  const double since_last_s =
+      have_last_pen_ ? static_cast<double>(pen.time_ns - last_pen_.time_ns) * 1e-9 : 0.0;
+  const bool continuation = pen.kind == platform::PenReadingKind::kButton && command.tip_down &&
+                            have_last_pen_ && last_pen_.tip_down && since_last_s >= 0.0 &&
+                            since_last_s <= kMaxReportGapS;
+  if (continuation) {
+    x_m = last_fx_ + dir_x_ * last_velocity_mps_ * since_last_s;
+    y_m = last_fy_ + dir_y_ * last_velocity_mps_ * since_last_s;
+    fx = x_m / pitch;
+    fy = y_m / pitch;
+    command.velocity_mps = last_velocity_mps_;
+  }
   command.x_m = x_m;
   command.y_m = y_m;
-  if (command.tip_down && have_last_pen_ && last_pen_.tip_down) {
+  if (!continuation && command.tip_down && have_last_pen_ && last_pen_.tip_down) {
     const double dx = x_m - last_fx_, dy = y_m - last_fy_;
     const double distance = std::hypot(dx, dy);
     const double dt_s = std::max(1e-3, static_cast<double>(pen.time_ns - last_pen_.time_ns) * 1e-9);
@@ -112,7 +129,7 @@ void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::Pr
 
   // Per-stroke loudness matching (stroke_gain.h): the smoothed stroke's correction for the scene
   // the pen plays; held while the pen is up. The speed counts hover reports too (touch-down).
-  {
+  if (!continuation) {
     const double dt_s =
         have_last_pen_ ? static_cast<double>(pen.time_ns - last_pen_.time_ns) * 1e-9 : 0.0;
     const bool recent = have_last_pen_ && dt_s > 0.0 && dt_s <= kMaxReportGapS;
@@ -152,10 +169,12 @@ void KioskEngine::OnPen(const platform::PenReading& pen, std::optional<synth::Pr
   }
 
   control.Probe(pen.time_ns, command);
+  if (continuation) return;
   have_last_pen_ = true;
   last_pen_ = pen;
   last_fx_ = x_m;
   last_fy_ = y_m;
+  last_velocity_mps_ = command.velocity_mps;
 }
 
 void KioskEngine::WatchPenRest(const platform::PenReading& pen) {

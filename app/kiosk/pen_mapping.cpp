@@ -35,6 +35,7 @@ void ApplyPenReading(const platform::PenReading& pen, double relief_m, const Pro
                      std::optional<synth::ProbeStyle> forced, const GestureMapping& mapping,
                      synth::ProbeCommand& command) {
   ApplyPenPressure(pen.pressure, relief_m, mapping, command);
+  if (!forced && pen.barrel_button) forced = synth::ProbeStyle::kRoll;
   ApplyPenTilt(pen.HasTilt() ? std::optional<double>(pen.TiltDeg()) : std::nullopt, untilted,
                forced, mapping, command);
 }

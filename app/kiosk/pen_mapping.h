@@ -11,8 +11,9 @@
 //                                 max_width_mm (max_tilt_deg: a rub)
 //                              -> style by that width: scrape below rub_width_mm, rub above
 // An input with no tilt (mouse, touch, the passive stroke) gets the texture's own probe instead. A
-// forced style (a roll stroke, the render command's --style) replaces the style by width and keeps
-// the tilt's width, except a roll, whose ball is the pen's own and does not grow when it leans.
+// held barrel button (or its mouse/keyboard stand-in) forces a roll; a forced style (a roll
+// stroke, the render command's --style) replaces the style by width and keeps the tilt's width,
+// except a roll, whose ball is the pen's own and does not grow when it leans.
 
 #include <optional>
 
@@ -46,7 +47,8 @@ void ApplyPenPressure(double pressure, double relief_m, const GestureMapping& ma
 void ApplyPenTilt(std::optional<double> tilt_deg, const ProbeShape& untilted,
                   std::optional<synth::ProbeStyle> forced, const GestureMapping& mapping,
                   synth::ProbeCommand& command);
-// Both for one reading: its pressure, and its tilt when it has one (a tablet's, or a script's).
+// Both for one reading: its pressure, and its tilt when it has one (a tablet's, or a script's);
+// its barrel button held forces a roll unless `forced` says otherwise.
 void ApplyPenReading(const platform::PenReading& pen, double relief_m, const ProbeShape& untilted,
                      std::optional<synth::ProbeStyle> forced, const GestureMapping& mapping,
                      synth::ProbeCommand& command);

@@ -97,6 +97,14 @@ constexpr double kSensorLossFactor = 0.1;
 // creep's speed. Without it a slow roll over a smooth stretch rang nothing (-92 to -101 dBFS at
 // 10 mm/s). The upper end of the range: at 3e-3 the quietest slow roll sat on -90 dBFS.
 constexpr double kRollingCreep = 0.01;
+// A style switched while the tip is down (the pen's barrel button pressed or let go mid-stroke):
+// each style feels a different profile under the same point (a rolling ball bridges a crack a
+// point falls into), and stepping from one to the other struck the probe like a tap (a step up
+// to 7 times the stroke's usual largest sample-to-sample change on cracked ground). The felt
+// height glides from the old profile to the new one over kStyleGlideS with a raised cosine (no
+// step in height or in its slope): at 100 mm/s the tip travels 2 mm meanwhile, about the chord
+// over which a ball rolls up out of a crack its own size.
+constexpr double kStyleGlideS = 0.02;
 
 }  // namespace
 
@@ -141,6 +149,10 @@ struct Scene::Impl {
   double x_m = 0.0, y_m = 0.0;
   double step_x_m = 0.0, step_y_m = 0.0;  // pen movement per frame (set with the gesture)
   double surface_m = 0.0;     // felt profile at the probe position (end of the last sample)
+  // A style switch's glide (kStyleGlideS): the old profile's height above the new one at the
+  // switch, faded out over glide_samples; glide_pos counts the samples done.
+  double glide_m = 0.0;
+  int glide_samples = 0, glide_pos = 0;
   bool burst_flight = false;  // tip up, released by a burst: park once it leaves the surface
   // A lift being carried out (kLiftSpeedMps): the stroke's gesture stays in force, its push the
   // fingers' spring as the hand rises, until the tip is off the surface; then the probe is parked
@@ -215,6 +227,8 @@ struct Scene::Impl {
     x_m = y_m = 0.0;
     step_x_m = step_y_m = 0.0;
     surface_m = 0.0;
+    glide_m = 0.0;
+    glide_pos = glide_samples;
     burst_flight = burst_touched = false;
     burst_samples = 0;
     unloading = false;
@@ -385,8 +399,17 @@ struct Scene::Impl {
     return rough_felt;
   }
 
+  // The glide's part of the felt height this sample (0 once it has ended).
+  double GlideStep() {
+    if (glide_pos >= glide_samples) return 0.0;
+    ++glide_pos;
+    const double phase = static_cast<double>(glide_pos) / glide_samples;
+    return glide_m * 0.5 * (1.0 + std::cos(std::numbers::pi * phase));
+  }
+
   void Release(double velocity_mps) {
     // The probe appears just touching the surface (x = 0) under the pen.
+    glide_pos = glide_samples;
     surface_m = Felt(x_m, y_m) + rough_felt;
     probe = ProbeDynamics{};
     probe.active = true;
@@ -497,6 +520,7 @@ struct Scene::Impl {
       return;
     }
     const bool was_down = gesture.tip_down;
+    const bool style_switch = was_down && c.tip_down && probe.active && c.style != gesture.style;
     // Friction is computed along the stroke: when the stroke turns, the bristle deflection keeps
     // its component along the new direction (a reversal flips its sign; a projection never adds
     // energy).
@@ -508,6 +532,12 @@ struct Scene::Impl {
     step_y_m = c.velocity_mps * c.direction_y / fs;
     x_m = c.x_m;
     y_m = c.y_m;
+    if (style_switch) {
+      // From the height felt last (the old style's, with any glide still under way) to the new
+      // style's here.
+      glide_m = surface_m - (Felt(x_m, y_m) + rough_felt);
+      glide_pos = 0;
+    }
     if (c.tip_down && !was_down) {
       Release(-c.landing_speed_mps);
       burst_flight = false;
@@ -533,7 +563,7 @@ struct Scene::Impl {
     y_m += step_y_m;
     if (!std::isfinite(x_m) || !std::isfinite(y_m)) x_m = y_m = 0.0;
     if (probe.active) {
-      const double next = FeltTracked(x_m, y_m) + RoughnessStep();
+      const double next = FeltTracked(x_m, y_m) + RoughnessStep() + GlideStep();
       SampleDrive drive;
       drive.surface_begin_m = surface_m;
       drive.surface_end_m = next;
@@ -666,6 +696,7 @@ void Scene::Prepare(const MaterialParams& material, const OutputParams& output,
   s.config.impact.Set(m.impact);
   s.config.friction.Set(m.friction);
   s.config.probe_mass_kg = m.probe.mass_kg;
+  s.glide_samples = std::max(1, static_cast<int>(std::lround(kStyleGlideS * s.fs)));
   s.pen_body = m.impact.enabled && m.probe.body_mass_kg > 0.0 &&
                std::isfinite(m.probe.body_mass_kg) && m.probe.body_spring_n_per_m > 0.0 &&
                std::isfinite(m.probe.body_spring_n_per_m);
@@ -822,6 +853,7 @@ SceneProbeState Scene::probe_state() const {
   const Impl& s = *impl_;
   SceneProbeState st;
   st.unloading = s.unloading;
+  st.gliding = s.probe.active && s.glide_pos < s.glide_samples;
   st.active = s.probe.active;
   st.height_m = s.probe.height_m;
   st.velocity_mps = s.probe.velocity_mps;

@@ -42,6 +42,10 @@ struct SceneProbeState {
   // The pen was lifted and the hand is still taking the load off the tip (a few ms; scene.cpp,
   // kLiftSpeedMps): the hand's work is an input to the energy until it ends.
   bool unloading = false;
+  // The style changed while the tip was down and the felt height is still gliding from the old
+  // style's profile to the new one's (scene.cpp, kStyleGlideS): the surface moves under the
+  // probe, an input to the energy like a slide's, until it ends.
+  bool gliding = false;
 };
 
 // What the scene leaves out because it cannot change the output. Everything is skipped by default;

@@ -110,6 +110,11 @@ int TokenForKey(SDL_Keycode k) {
 
 }  // namespace
 
+float PressRamp::At(double held_s) const {
+  const double rise = rise_s > 0.0 ? std::clamp(held_s / rise_s, 0.0, 1.0) : 1.0;
+  return static_cast<float>(light + (firm - light) * rise);
+}
+
 struct KioskWindow::Impl {
   KioskWindowOptions options;
   ParsedChord chord;
@@ -121,9 +126,14 @@ struct KioskWindow::Impl {
   Uint32 window_id = 0;
 
   // Input state.
-  bool mouse_down = false;
+  bool mouse_down = false;  // the left or the right button is held (a stroke)
+  bool left_held = false, right_held = false;
+  bool roll_key = false;  // Space held: the stroke rolls
   bool finger_active = false;
   SDL_FingerID finger = 0;
+  bool press_ramps = false;         // this stroke's pressure comes from options.press
+  std::int64_t press_since_ns = 0;  // when its button or finger went down
+  bool rest_reported = false;       // the resting press has nothing more to report
   platform::PenReading last{};
   bool chord_held = false;
   bool chord_fired = false;
@@ -241,7 +251,38 @@ struct KioskWindow::Impl {
     s.tip_down = down;
     s.pressure = down ? std::clamp(pressure, 0.0f, 1.0f) : 0.0f;
     s.origin = origin;
+    s.barrel_button = roll_key || (origin == platform::PenOrigin::kMouse && right_held);
     return s;
+  }
+
+  // The mouse's (or a pressure-less finger's) press at `t_ns` into the stroke.
+  float RampedPress(std::int64_t t_ns) const {
+    return options.press.At(static_cast<double>(t_ns - press_since_ns) * 1e-9);
+  }
+
+  // The stroke's last reading again at `t_ns` with what changed without a motion event: the
+  // grown press, or the barrel button's stand-ins (then a kButton reading: no new position).
+  void Resend(std::vector<UiEvent>& out, std::int64_t t_ns, platform::PenReadingKind kind) {
+    platform::PenReading s = last;
+    s.time_ns = t_ns;
+    s.kind = kind;
+    if (press_ramps) s.pressure = RampedPress(t_ns);
+    s.barrel_button = roll_key || (s.origin == platform::PenOrigin::kMouse && right_held);
+    Pointer(out, UiEvent::Kind::kPointerMove, s);
+  }
+
+  bool Pressing() const { return mouse_down || finger_active; }
+
+  // Called after a poll that left SDL's queue empty: a press resting longer than kPressReportS
+  // reports its grown pressure, and that it rests (the probe stops instead of sliding on at the
+  // last motion's speed), until the press is firm.
+  void ReportRestingPress(std::vector<UiEvent>& out) {
+    if (!Pressing() || rest_reported) return;
+    const std::int64_t now = NowNs();
+    if (static_cast<double>(now - last.time_ns) * 1e-9 < KioskWindow::kPressReportS) return;
+    last_event_ns = std::max(last_event_ns, now);
+    Resend(out, last_event_ns, platform::PenReadingKind::kMotion);
+    rest_reported = !press_ramps || last.pressure >= options.press.firm;
   }
 
   void Pointer(std::vector<UiEvent>& out, UiEvent::Kind kind, const platform::PenReading& s) {
@@ -250,6 +291,7 @@ struct KioskWindow::Impl {
     e.time_ns = s.time_ns;
     e.stylus = s;
     last = s;
+    rest_reported = false;
     out.push_back(e);
   }
 
@@ -286,6 +328,12 @@ struct KioskWindow::Impl {
       if (code == chord.key) return;  // the chord's key is not also a token/record key
     }
     if (k.repeat) return;
+    if (code == SDLK_SPACE) {
+      // The roll key: a stroke under way switches at once (and back on release).
+      roll_key = down;
+      if (Pressing()) Resend(out, t, platform::PenReadingKind::kButton);
+      return;
+    }
     const int token = TokenForKey(code);
     if (token >= -1 && down) {
       UiEvent e;
@@ -337,29 +385,40 @@ struct KioskWindow::Impl {
             return;  // SDL_WINDOWEVENT_CLOSE included: swallowed
         }
       case SDL_MOUSEBUTTONDOWN:
-        if (ev.button.which == SDL_TOUCH_MOUSEID || ev.button.button != SDL_BUTTON_LEFT) return;
-        if (mouse_down) return;
-        mouse_down = true;
-        Pointer(out, UiEvent::Kind::kPointerDown,
-                Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), true,
-                       options.mouse_pressure, platform::PenOrigin::kMouse,
-                       Stamp(ev.button.timestamp)));
+      case SDL_MOUSEBUTTONUP: {
+        // Left or right button: a stroke while either is held; the right one rolls it.
+        const bool left = ev.button.button == SDL_BUTTON_LEFT;
+        if (ev.button.which == SDL_TOUCH_MOUSEID || finger_active ||
+            (!left && ev.button.button != SDL_BUTTON_RIGHT))
+          return;
+        const bool down = ev.type == SDL_MOUSEBUTTONDOWN;
+        bool& held = left ? left_held : right_held;
+        if (held == down) return;
+        held = down;
+        const std::int64_t t = Stamp(ev.button.timestamp);
+        if (mouse_down == (left_held || right_held)) {
+          // The other button is still held: only the roll changed.
+          Resend(out, t, platform::PenReadingKind::kButton);
+          return;
+        }
+        mouse_down = down;
+        if (down) {
+          press_ramps = true;
+          press_since_ns = t;
+        }
+        Pointer(out, down ? UiEvent::Kind::kPointerDown : UiEvent::Kind::kPointerUp,
+                Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), down,
+                       down ? RampedPress(t) : 0.0f, platform::PenOrigin::kMouse, t));
         return;
-      case SDL_MOUSEMOTION:
+      }
+      case SDL_MOUSEMOTION: {
         if (ev.motion.which == SDL_TOUCH_MOUSEID || finger_active) return;
+        const std::int64_t t = Stamp(ev.motion.timestamp);
         Pointer(out, UiEvent::Kind::kPointerMove,
                 Sample(static_cast<float>(ev.motion.x), static_cast<float>(ev.motion.y), mouse_down,
-                       options.mouse_pressure, platform::PenOrigin::kMouse,
-                       Stamp(ev.motion.timestamp)));
+                       RampedPress(t), platform::PenOrigin::kMouse, t));
         return;
-      case SDL_MOUSEBUTTONUP:
-        if (ev.button.which == SDL_TOUCH_MOUSEID || ev.button.button != SDL_BUTTON_LEFT) return;
-        if (!mouse_down) return;
-        mouse_down = false;
-        Pointer(out, UiEvent::Kind::kPointerUp,
-                Sample(static_cast<float>(ev.button.x), static_cast<float>(ev.button.y), false,
-                       0.0f, platform::PenOrigin::kMouse, Stamp(ev.button.timestamp)));
-        return;
+      }
       case SDL_FINGERDOWN:
       case SDL_FINGERMOTION:
       case SDL_FINGERUP: {
@@ -375,15 +434,22 @@ struct KioskWindow::Impl {
         SDL_GetWindowSize(window, &win_w, &win_h);
         const float x = f.x * static_cast<float>(win_w);  // touch coordinates are 0..1
         const float y = f.y * static_cast<float>(win_h);
+        const std::int64_t t = Stamp(f.timestamp);
         // Panels without a pressure sensor report 0 or 1: treat "no reading" like the mouse.
-        const float pressure = f.pressure > 0.0f ? f.pressure : options.mouse_pressure;
+        if (ev.type == SDL_FINGERDOWN) {
+          press_ramps = !(f.pressure > 0.0f);
+          press_since_ns = t;
+        } else if (f.pressure > 0.0f) {
+          press_ramps = false;
+        }
+        const float pressure = press_ramps ? RampedPress(t) : f.pressure;
         const bool up = ev.type == SDL_FINGERUP;
         if (up) finger_active = false;
         Pointer(out,
                 ev.type == SDL_FINGERDOWN ? UiEvent::Kind::kPointerDown
                 : up                      ? UiEvent::Kind::kPointerUp
                                           : UiEvent::Kind::kPointerMove,
-                Sample(x, y, !up, pressure, platform::PenOrigin::kTouch, Stamp(f.timestamp)));
+                Sample(x, y, !up, pressure, platform::PenOrigin::kTouch, t));
         return;
       }
       case SDL_KEYDOWN:
@@ -524,6 +590,7 @@ std::vector<UiEvent> KioskWindow::PollEvents(int wait_ms, std::size_t max_sdl_ev
     m.Handle(ev, out);
     ++taken;
   }
+  if (taken < max_sdl_events) m.ReportRestingPress(out);
   if (m.chord_held && !m.chord_fired) {
     const std::int64_t now = NowNs();
     if (static_cast<double>(now - m.chord_since_ns) * 1e-9 >= m.options.staff_chord.hold_s) {

@@ -7,11 +7,15 @@
 // systemd's stop still ends the process. A configurable staff chord (default Ctrl+Alt+S held for
 // 1 s) toggles the staff panel flag and is reported as an event.
 //
-// Input mapping: mouse (fallback: fixed pressure, no tilt) and the first touch finger (pressure
-// from the panel) become pen readings (platform/pen/pen_reading.h) in screen pixels with
-// CLOCK_MONOTONIC timestamps; mouse events SDL synthesises from touch are dropped so one touch is
-// one stroke. Keys 1-4 / 0 stand in for the token switches, R for the record button. The pen
-// (libinput, platform/pen) produces the same reading and bypasses this window.
+// Input mapping: mouse (fallback: no tilt, a press that grows the longer it is held) and the
+// first touch finger (pressure from the panel; one without a pressure sensor presses like the
+// mouse) become pen readings (platform/pen/pen_reading.h) in screen pixels with CLOCK_MONOTONIC
+// timestamps; mouse events SDL synthesises from touch are dropped so one touch is one stroke.
+// While a press rests (no motion for kPressReportS), a reading with the grown pressure is sent
+// every kPressReportS, so a press held still pops a bubble. The right mouse button drags like the
+// left one but rolls, and so does any stroke while the roll key (Space) is held: both stand in for
+// the pen's barrel button. Keys 1-4 / 0 stand in for the token switches, R for the record button.
+// The pen (libinput, platform/pen) produces the same reading and bypasses this window.
 //
 // Drawing: Present() draws a Frame (texture_view.h) — pictures as GPU textures uploaded once per
 // picture, the cross-fade with alpha blending, the small deformation patch as a streaming texture,
@@ -40,17 +44,33 @@ struct StaffChordConfig {
   double hold_s = 1.0;              // held this long before it counts (0 = at the key press)
 };
 
+// How the mouse (or a touch without pressure) presses: `light` at the touch, rising linearly to
+// `firm` over `rise_s` held. 0.3 is the lightest press the level calibration covers, so a quick
+// drag (under half a second: below 0.47) sounds like a light pen stroke; 0.9 is the firmest the
+// kiosk's figures hold (pressure 0.1-0.9). Over 1.8 s the press passes 0.625 after 0.98 s: a
+// bubble's pop (2.5 N, of the 4 N a full pen press stands for on the bubble wrap) comes after
+// about a second held still or pressing on, as a visitor pushing on a bubble expects.
+struct PressRamp {
+  float light = 0.3f;
+  float firm = 0.9f;
+  double rise_s = 1.8;
+  // The press `held_s` after the touch.
+  float At(double held_s) const;
+};
+
 struct KioskWindowOptions {
   std::string title = "Sketch-a-Scratch";
   StaffChordConfig staff_chord{};
-  float mouse_pressure =
-      0.6f;  // the mouse has no pressure sensor: a mid press while a button is held
+  PressRamp press{};  // the mouse has no pressure sensor
   bool vsync = true;
   bool grab_keyboard = true;  // window-manager shortcuts (Alt-Tab, Alt-F4) come to us instead
 };
 
 class KioskWindow {
  public:
+  // While a mouse or touch press rests, its grown pressure is reported this often (s).
+  static constexpr double kPressReportS = 0.01;
+
   explicit KioskWindow(KioskWindowOptions options = {});
   ~KioskWindow();
   KioskWindow(KioskWindow&&) noexcept;

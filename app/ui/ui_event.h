@@ -13,7 +13,8 @@ namespace sas::ui {
 struct UiEvent {
   enum class Kind : std::uint8_t {
     kPointerDown,  // tip touched the screen; `stylus` holds position and pressure
-    kPointerMove,  // moved, tip down or hovering (stylus.tip_down says which)
+    kPointerMove,  // moved, tip down or hovering (stylus.tip_down says which), or a resting press
+                   // grew or the roll changed (stylus.kind kButton: the position is the last one)
     kPointerUp,    // tip lifted; `stylus` is the last position with pressure 0
     kTokenKey,     // keyboard token fallback: `token` 0..3 for keys 1..4, -1 for key 0
     kRecordKey,    // keyboard record button: `pressed` true on press, false on release

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <libinput.h>
 #include <libudev.h>
+#include <linux/input-event-codes.h>
 #include <poll.h>
 #include <unistd.h>
 
@@ -25,6 +26,20 @@ struct UdevDeleter {
 struct LibinputDeleter {
   void operator()(libinput* li) const { libinput_unref(li); }
 };
+
+// The pen's barrel buttons (linux/input-event-codes.h) as bits; 0 for any other button.
+std::uint32_t BarrelBit(std::uint32_t code) {
+  switch (code) {
+    case BTN_STYLUS:
+      return 1U;
+    case BTN_STYLUS2:
+      return 2U;
+    case BTN_STYLUS3:
+      return 4U;
+    default:
+      return 0U;
+  }
+}
 
 class LibinputPenSource final : public PenSource {
  public:
@@ -113,6 +128,7 @@ class LibinputPenSource final : public PenSource {
         // with a stale tip-down (the kiosk lifts the stroke itself on the unplug).
         tip_down_ = false;
         in_proximity_ = false;
+        barrel_buttons_ = 0;
       }
       DeviceRemoved(IsOurTablet(device), board_);
       return;
@@ -123,9 +139,19 @@ class LibinputPenSource final : public PenSource {
       return;
     }
     if (type != LIBINPUT_EVENT_TABLET_TOOL_AXIS && type != LIBINPUT_EVENT_TABLET_TOOL_TIP &&
-        type != LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY)
+        type != LIBINPUT_EVENT_TABLET_TOOL_PROXIMITY && type != LIBINPUT_EVENT_TABLET_TOOL_BUTTON)
       return;
     libinput_event_tablet_tool* tool = libinput_event_get_tablet_tool_event(event);
+    if (type == LIBINPUT_EVENT_TABLET_TOOL_BUTTON) {
+      // A pen may have two or three barrel buttons; any of them held rolls. Other tools' buttons
+      // (a puck's, an airbrush's) are no barrel button.
+      const std::uint32_t bit = BarrelBit(libinput_event_tablet_tool_get_button(tool));
+      if (bit == 0) return;
+      if (libinput_event_tablet_tool_get_button_state(tool) == LIBINPUT_BUTTON_STATE_PRESSED)
+        barrel_buttons_ |= bit;
+      else
+        barrel_buttons_ &= ~bit;
+    }
     PenReading pen;
     pen.time_ns = static_cast<std::int64_t>(libinput_event_tablet_tool_get_time_usec(tool)) * 1000;
     pen.origin = PenOrigin::kTablet;
@@ -148,9 +174,13 @@ class LibinputPenSource final : public PenSource {
                       LIBINPUT_TABLET_TOOL_PROXIMITY_STATE_IN;
       pen.kind = in_proximity_ ? PenReadingKind::kProximityIn : PenReadingKind::kProximityOut;
       if (!in_proximity_) tip_down_ = false;
+      if (!in_proximity_) barrel_buttons_ = 0;
+    } else if (type == LIBINPUT_EVENT_TABLET_TOOL_BUTTON) {
+      pen.kind = PenReadingKind::kButton;
     }
     pen.tip_down = tip_down_;
     pen.in_proximity = in_proximity_;
+    pen.barrel_button = barrel_buttons_ != 0;
     queue_.TryPush(pen);
   }
 
@@ -162,6 +192,7 @@ class LibinputPenSource final : public PenSource {
   std::thread thread_;
   bool tip_down_ = false;
   bool in_proximity_ = false;
+  std::uint32_t barrel_buttons_ = 0;  // BarrelBit of each barrel button held
 };
 
 }  // namespace

@@ -4,8 +4,8 @@
 // a script (the headless visit, the attract screen's passive stroke). It travels unchanged from
 // the device to the probe: the window's dent reads it, the staff panel shows it and the kiosk's
 // one pen mapping (app/kiosk/pen_mapping.h) turns it into a probe command (pressure -> normal
-// force and penetration, tilt -> probe width and style, paper §4). Standard library only, so
-// every layer can hold it.
+// force and penetration, tilt -> probe width and style, paper §4; a held barrel button -> a roll).
+// Standard library only, so every layer can hold it.
 
 #include <cmath>
 #include <cstdint>
@@ -18,6 +18,7 @@ enum class PenReadingKind : std::uint8_t {
   kTipUp,
   kProximityIn,
   kProximityOut,
+  kButton,  // a barrel button was pressed or released (barrel_button says which)
 };
 
 // Who made the reading. Only a tablet (or a script playing one) has a tilt that counts: mouse and
@@ -34,6 +35,10 @@ struct PenReading {
   double tilt_y_deg = 0.0;
   bool tip_down = false;
   bool in_proximity = false;  // a tablet's hover range (mouse and touch: not reported)
+  // A barrel button of the pen is held (BTN_STYLUS, BTN_STYLUS2 or BTN_STYLUS3): the stroke rolls.
+  // In the mouse/touch fallback the right mouse button or the roll key stands in for it, as keys
+  // 1-4 stand in for the token switches.
+  bool barrel_button = false;
   PenOrigin origin = PenOrigin::kMouse;
 
   bool HasTilt() const { return origin == PenOrigin::kTablet; }

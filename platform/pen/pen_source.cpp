@@ -6,9 +6,11 @@ namespace sas::platform {
 bool PenSource::Pop(PenReading& reading) {
   if (!queue_.TryPop(reading)) return false;
   // Whatever a backend queued, a reading leaves here meaning one thing for the screen and the
-  // probe: a tip out of range is up, and an up tip presses with nothing.
+  // probe: a tip out of range is up, and an up tip presses with nothing; a pen out of range holds
+  // no button (the next stroke must not start rolling on a release that never came).
   reading.origin = PenOrigin::kTablet;
   reading.tip_down = reading.tip_down && reading.in_proximity;
+  reading.barrel_button = reading.barrel_button && reading.in_proximity;
   if (!reading.tip_down) reading.pressure = 0.0;
   return true;
 }

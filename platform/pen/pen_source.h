@@ -3,7 +3,9 @@
 // platform.md) on their own thread, timestamped (CLOCK_MONOTONIC, libinput's clock), into an SPSC
 // queue the control thread drains, one PenReading (pen_reading.h) each. x/y come from
 // libinput_event_tablet_tool_get_x/y_transformed scaled to the screen size in pixels; pressure
-// 0..1 after libinput's pressure offset; tilt in degrees. When no tablet is present the source
+// 0..1 after libinput's pressure offset; tilt in degrees; whether a barrel button (BTN_STYLUS,
+// BTN_STYLUS2, BTN_STYLUS3) is held, a reading of its own each time one is pressed or released
+// (libinput's TABLET_TOOL_BUTTON, which carries the axes too). When no tablet is present the source
 // reports it cleanly ("missing") and the UI uses SDL2 mouse/touch instead — that fallback lives in
 // app/ui, not here. A tablet unplugged, plugged back or plugged in for the first time after start
 // is picked up by the same event thread (one status line each). Status key "pen".
@@ -41,7 +43,8 @@ class PenSource {
   virtual bool Start(std::string* error) = 0;
   virtual void Stop() = 0;
   // The next reading, as every backend's readings leave the platform: a tablet's (its tilt
-  // counts), the tip down only in proximity, pressure 0 while the tip is up.
+  // counts), the tip down and a barrel button held only in proximity, pressure 0 while the tip is
+  // up.
   bool Pop(PenReading& reading);
   // CLOCK_MONOTONIC time the event thread last ran its loop (watchdog), 0 before start.
   std::int64_t HeartbeatNs() const { return heartbeat_ns_.load(std::memory_order_relaxed); }

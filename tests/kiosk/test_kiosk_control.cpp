@@ -23,8 +23,12 @@
 #include "platform/audio/audio_output.h"
 #include "platform/pen/pen_source.h"
 #include "support/temp_dir.h"
+#include "tablet_rig.h"
 
 using namespace sas;
+using test::QuietLogger;
+using test::TabletRig;
+using test::VirtualClockOptions;
 
 namespace {
 
@@ -51,40 +55,6 @@ void Stroke(kiosk::KioskEngine& engine, std::int64_t t_ns) {
     engine.OnPen(pen);
   }
 }
-
-kiosk::KioskEngineOptions VirtualClockOptions() {
-  kiosk::KioskEngineOptions options;
-  options.virtual_clock = true;
-  options.cues_dir = "/nonexistent";
-  return options;
-}
-
-struct QuietLogger : platform::Logger {
-  QuietLogger() { SetEchoToStderr(false); }
-};
-
-// A kiosk with offline audio, keys for tokens and `pen_source` as its tablet, under the control
-// loop.
-struct TabletRig {
-  explicit TabletRig(std::unique_ptr<platform::FakePenSource> pen_source)
-      : engine(VirtualClockOptions()),
-        output(engine.audio(), platform::AudioOutputConfig{}),
-        fake(pen_source.get()),
-        pen(platform::OpenPen({}, board, std::move(pen_source))),
-        control(engine, {&output, pen.get(), &switches}, log) {
-    REQUIRE(output.Start());
-    REQUIRE(pen != nullptr);
-  }
-
-  kiosk::KioskEngine engine;
-  platform::OfflineAudioOutput output;
-  platform::SwitchInputs switches;
-  QuietLogger log;
-  platform::DeviceStatusBoard board{log};
-  platform::FakePenSource* fake;
-  std::unique_ptr<platform::PenSource> pen;
-  kiosk::KioskControl control;
-};
 
 }  // namespace
 

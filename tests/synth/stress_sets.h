@@ -10,9 +10,9 @@
 // output gains; a random gesture with discontinuous jumps of position, force, style, width and
 // tip up/down, bursts, on a rough profile with steps.
 // Checks: every output sample finite and |y| <= 1 (the limiter), and in a final stretch with no
-// input (tip held down without sliding, or lifted) the total mechanical energy
-// Scene::TotalEnergy() of the unlimited physics never rises from one sample to the next by more
-// than kStressEnergyTolerance of the energy scale.
+// input (tip held down without sliding, or lifted; once a lift or a style switch's glide has
+// ended) the total mechanical energy Scene::TotalEnergy() of the unlimited physics never rises
+// from one sample to the next by more than kStressEnergyTolerance of the energy scale.
 
 #include <algorithm>
 #include <cmath>
@@ -189,9 +189,14 @@ inline StressOutcome RunStressSet(const StressSet& set, const SceneSkips& skips 
   ProbeCommand rest = set.rest;
   scene.Process(&rest, 1, frame, 1);
   check(frame, 2);
-  // A lift is carried out by the hand (Scene: the load taken off over a few ms), an input like
-  // the gesture: the energy is watched from its end on.
-  for (long n = 0; scene.probe_state().unloading && n < static_cast<long>(set.sample_rate_hz); ++n) {
+  // A lift is carried out by the hand (Scene: the load taken off over a few ms), and a style
+  // switched with the tip down glides the felt surface to the new style's (20 ms): inputs like
+  // the gesture. The energy is watched from their end on.
+  const auto input = [&] {
+    const SceneProbeState state = scene.probe_state();
+    return state.unloading || state.gliding;
+  };
+  for (long n = 0; input() && n < static_cast<long>(set.sample_rate_hz); ++n) {
     scene.Process(nullptr, 0, frame, 1);
     check(frame, 2);
   }

@@ -11,9 +11,14 @@
 #include <vector>
 
 #include "no_display_server.h"
+#include "sdl_test_events.h"
 #include "ui/kiosk_window.h"
 #include "ui/texture_view.h"
 
+using sas::test::OffscreenDriver;
+using sas::test::PushKey;
+using sas::test::PushMouseButton;
+using sas::test::PushMouseMotion;
 using sas::ui::ImageRgba;
 using sas::ui::KioskWindow;
 using sas::ui::Rgba;
@@ -21,43 +26,8 @@ using sas::ui::UiEvent;
 
 namespace {
 
-// Selects the offscreen driver for one test and restores the environment after it.
-struct OffscreenDriver {
-  OffscreenDriver() { setenv("SDL_VIDEODRIVER", "offscreen", 1); }
-  ~OffscreenDriver() { unsetenv("SDL_VIDEODRIVER"); }
-};
-
 double NowS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-void PushKey(SDL_Keycode key, bool down, Uint16 mod) {
-  SDL_Event e{};
-  e.type = down ? SDL_KEYDOWN : SDL_KEYUP;
-  e.key.state = down ? SDL_PRESSED : SDL_RELEASED;
-  e.key.keysym.sym = key;
-  e.key.keysym.scancode = SDL_GetScancodeFromKey(key);
-  e.key.keysym.mod = mod;
-  REQUIRE(SDL_PushEvent(&e) == 1);
-}
-
-void PushMouseButton(int x, int y, bool down) {
-  SDL_Event e{};
-  e.type = down ? SDL_MOUSEBUTTONDOWN : SDL_MOUSEBUTTONUP;
-  e.button.button = SDL_BUTTON_LEFT;
-  e.button.state = down ? SDL_PRESSED : SDL_RELEASED;
-  e.button.clicks = 1;
-  e.button.x = x;
-  e.button.y = y;
-  REQUIRE(SDL_PushEvent(&e) == 1);
-}
-
-void PushMouseMotion(int x, int y) {
-  SDL_Event e{};
-  e.type = SDL_MOUSEMOTION;
-  e.motion.x = x;
-  e.motion.y = y;
-  REQUIRE(SDL_PushEvent(&e) == 1);
 }
 
 // Opens the window and drains what opening it queued (shown/exposed: redraw requests), so a test
@@ -240,7 +210,7 @@ TEST_CASE("a mouse drag becomes pointer down, moves and up at the pushed pixel p
           "[render]") {
   OffscreenDriver driver;
   sas::ui::KioskWindowOptions options;
-  options.mouse_pressure = 0.7f;
+  options.press.light = options.press.firm = 0.7f;  // a constant press, to check it is carried
   KioskWindow window(options);
   OpenSettled(window);
   PushMouseMotion(10, 20);  // hover
