@@ -48,6 +48,9 @@ class Visit {
     // stroke (a 2 s quick timeout wiped the voice there).
     engine.config.idle_timeout_s = options.quick ? 5.0 : 6.0;
     engine.countdown_s = options.quick ? 1.0 : 3.0;
+    // The scripted visit plays the shipped cues, whatever a box's staff recorded: the same visit
+    // and the same files on every machine.
+    engine.config.staff_dir.clear();
     engine.screen_width_px = options.width_px;
     engine.screen_height_px = options.height_px;
     engine.virtual_clock = true;

@@ -31,6 +31,7 @@
 #include "cue_voice.h"
 #include "files/strings.h"
 #include "surface/wav_writer.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -135,19 +136,16 @@ int main(int argc, char** argv) {
                  "re-speak the committed renders into this folder instead of building cues");
   app.add_option("--pico-root", pico_root, "SVOX Pico unpacked by fetch_engines.sh (render mode)");
   app.add_option("--choice", choice_path, "which languages Pico speaks (textures/voices/choice.toml)");
-  try {
-    app.parse(argc, argv);
-    const bool render = !render_out.empty();
-    if (render && (pico_root.empty() || choice_path.empty())) {
-      throw CLI::ValidationError("--render-out", "needs --pico-root and --choice");
-    }
-    if (!render && (espeak.empty() || out_dir.empty())) {
-      throw CLI::ValidationError("--out", "building cues needs --espeak and --out");
-    }
-  } catch (const CLI::Success& done) {
-    return app.exit(done);  // --help: exit 0
-  } catch (const CLI::ParseError& bad) {
-    app.exit(bad);
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
+  // The two modes' own needs, which CLI11's option list cannot say: a usage error like the others.
+  const bool render = !render_out.empty();
+  const char* missing = render && (pico_root.empty() || choice_path.empty())
+                            ? "--render-out needs --pico-root and --choice"
+                        : !render && (espeak.empty() || out_dir.empty())
+                            ? "building cues needs --espeak and --out"
+                            : nullptr;
+  if (missing != nullptr) {
+    std::fprintf(stderr, "cue_maker: %s\n(cue_maker --help lists the options)\n", missing);
     return 2;
   }
   try {

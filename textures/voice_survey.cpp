@@ -26,6 +26,7 @@
 
 #include "cue_voice.h"
 #include "files/strings.h"
+#include "tools/command_line.h"
 #include "voice_figures.h"
 
 namespace {
@@ -225,14 +226,7 @@ int main(int argc, char** argv) {
   app.add_option("--textures-dir", textures_dir, "texture folders' parent");
   app.add_option("--choice", choice_path, "the committed choice (textures/voices/choice.toml)");
   app.add_option("--docs", docs, "write voices.md into this folder");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& done) {
-    return app.exit(done);
-  } catch (const CLI::ParseError& bad) {
-    app.exit(bad);
-    return 2;
-  }
+  if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
   try {
     const fs::path work = fs::temp_directory_path() / ("voice_survey-" + std::to_string(getpid()));
     fs::create_directories(work);

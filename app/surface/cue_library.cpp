@@ -23,9 +23,28 @@ ShapedCue ShapeCue(std::vector<float> x, double rate_hz) {
   for (float v : x) peak = std::max(peak, std::fabs(v));
   if (peak <= 0.0f) throw std::runtime_error("silence: no sample above zero");
   const float floor = peak * static_cast<float>(std::pow(10.0, kCueTrimBelowPeakDb / 20.0));
+  // A sample is sound when it passes the floor and so does the 10 ms around it, within 12 dB: a
+  // lone click in a silent stretch (a codec's or a recorder's) does not hold the trim open, which
+  // could leave a count twice as long as its word.
+  std::vector<double> energy(x.size() + 1, 0.0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    energy[i + 1] = energy[i] + static_cast<double>(x[i]) * static_cast<double>(x[i]);
+  }
+  const auto half = std::max<std::size_t>(1, static_cast<std::size_t>(0.005 * rate_hz));
+  const double floor_rms = 0.25 * static_cast<double>(floor);
+  // The window keeps its length at the ends (moved inside), so a codec's loud last samples are
+  // judged against 10 ms too.
+  const std::size_t window = std::min(x.size(), 2 * half + 1);
+  const auto sound = [&](std::size_t i) {
+    if (std::fabs(x[i]) < floor) return false;
+    const std::size_t a = std::min(i > half ? i - half : 0, x.size() - window);
+    return (energy[a + window] - energy[a]) / static_cast<double>(window) >=
+           floor_rms * floor_rms;
+  };
   std::size_t first = 0, last = x.size();
-  while (first < x.size() && std::fabs(x[first]) < floor) ++first;
-  while (last > first && std::fabs(x[last - 1]) < floor) --last;
+  while (first < x.size() && !sound(first)) ++first;
+  while (last > first && !sound(last - 1)) --last;
+  if (first == last) throw std::runtime_error("silence: nothing sustained above the trim floor");
   const auto margin = static_cast<std::size_t>(kCueMarginS * rate_hz);
   first = first > margin ? first - margin : 0;
   last = std::min(x.size(), last + margin);

@@ -28,7 +28,8 @@ std::string CueLevelProblem(const AudioClip& clip);
 
 // How every spoken cue is levelled, the synthetic ones (cue_maker) and those staff record
 // (kiosk/staff_cues.h) alike, so all of them are heard at one level:
-//   trim leading/trailing silence (below kCueTrimBelowPeakDb re the peak), keep kCueMarginS
+//   trim leading/trailing silence (below kCueTrimBelowPeakDb re the peak; a lone click, whose 10 ms
+//   around it stay 12 dB under that, counts as silence), keep kCueMarginS
 //   either side -> loudness-normalise to kCueLoudnessLufs (BS.1770 K-weighted, ungated,
 //   surface/loudness.h), then lower further if needed so the peak stays at or below kCuePeakDbfs
 //   (never clipped) -> kCueFadeS raised-cosine fades at both ends.

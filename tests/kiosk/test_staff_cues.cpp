@@ -23,6 +23,7 @@
 #include <toml++/toml.h>
 
 #include "files/strings.h"
+#include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/spoken_cues.h"
 #include "kiosk/staff_cues.h"
@@ -282,6 +283,12 @@ TEST_CASE(
   engine.SetCueObserver([&](const sas::kiosk::CueEvent& cue) { events.push_back(cue); });
   engine.SetAudioRunning(true);
   CHECK(engine.staff_cues_loaded() == 1);
+  // On the attract screen the first press keeps the language being shown (English here); the
+  // second steps to German.
+  REQUIRE(engine.NextLanguage(0));
+  REQUIRE(events.size() == 1);
+  CHECK(events[0].language == "en");
+  events.clear();
   REQUIRE(engine.NextLanguage(0));
   REQUIRE(events.size() == 1);
   CHECK(events[0].language == "de");
@@ -298,6 +305,7 @@ TEST_CASE(
   sas::platform::Logger log;
   log.SetEchoToStderr(false);
   sas::platform::DeviceStatusBoard board{log};
+  sas::kiosk::ReportTextures(board, engine);  // as the live kiosk does at start
   sas::platform::OfflineAudioOutput output(engine.audio(), sas::platform::AudioOutputConfig{});
   sas::platform::SwitchInputs switches;
   sas::platform::TokenSelector selector;
