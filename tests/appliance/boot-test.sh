@@ -436,7 +436,7 @@ native_start_s() {  # prints "WALL CPU" seconds
     exec "$build_dir/app/sketch-a-scratch" --kiosk --config "$repo/install/kiosk.toml" \
     --state-dir "$d/state") >"$d/log" 2>&1 &
   pid=$!
-  until grep -q '^kiosk ready' "$d/log" || ! kill -0 "$pid" 2>/dev/null; do sleep 0.05; done
+  until grep -qs '^kiosk ready' "$d/log" || ! kill -0 "$pid" 2>/dev/null; do sleep 0.05; done
   if grep -q '^kiosk ready' "$d/log"; then
     wall=$(awk -v a="$(date +%s.%N)" -v b="$t0" 'BEGIN { printf "%.2f", a - b }')
     # utime + stime of all its threads (fields 14 and 15 after the command name's parentheses)
