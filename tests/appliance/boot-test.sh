@@ -429,15 +429,24 @@ native_start_s() {  # prints "WALL CPU" seconds
   printf 'pcm.!default { type null }\n' >"$d/asound.conf"
   Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$d/display" 2>/dev/null &
   xvfb_pid=$!
-  until [ -s "$d/display" ] || ! kill -0 "$xvfb_pid" 2>/dev/null; do sleep 0.05; done
+  # Event waits (the display's number, the ready line, or the process gone), each with a generous
+  # deadline so that a hung start fails this measure instead of hanging the test.
+  local deadline=$((SECONDS + 600))
+  until [ -s "$d/display" ] || ! kill -0 "$xvfb_pid" 2>/dev/null || [ "$SECONDS" -ge "$deadline" ]; do
+    sleep 0.05
+  done
   display_no=$(cat "$d/display")
   t0=$(date +%s.%N)
   (cd "$d" && DISPLAY=":$display_no" ALSA_CONFIG_PATH="$d/asound.conf" HOME="$d" \
     exec "$build_dir/app/sketch-a-scratch" --kiosk --config "$repo/install/kiosk.toml" \
     --state-dir "$d/state") >"$d/log" 2>&1 &
   pid=$!
-  until grep -qs '^kiosk ready' "$d/log" || ! kill -0 "$pid" 2>/dev/null; do sleep 0.05; done
-  if grep -q '^kiosk ready' "$d/log"; then
+  deadline=$((SECONDS + 600))
+  until grep -qs '^kiosk ready' "$d/log" || ! kill -0 "$pid" 2>/dev/null ||
+    [ "$SECONDS" -ge "$deadline" ]; do
+    sleep 0.05
+  done
+  if grep -qs '^kiosk ready' "$d/log"; then
     wall=$(awk -v a="$(date +%s.%N)" -v b="$t0" 'BEGIN { printf "%.2f", a - b }')
     # utime + stime of all its threads (fields 14 and 15 after the command name's parentheses)
     ticks=$(sed 's/.*) //' "/proc/$pid/stat" | awk '{ print $12 + $13 }')
