@@ -877,6 +877,12 @@ double Scene::sample_rate_hz() const {
 int Scene::contact_oversample() const {
   return impl_->config.substeps;
 }
+ContactScheme Scene::contact_scheme() const {
+  return impl_->config.scheme;
+}
+bool Scene::adaptive_oversample() const {
+  return impl_->config.adaptive;
+}
 int Scene::active_mode_count() const {
   return impl_->modes.count;
 }

@@ -133,6 +133,10 @@ class Scene {
   SceneProbeState probe_state() const;
   double sample_rate_hz() const;
   int contact_oversample() const;  // sub-steps per sample used while in contact
+  // The contact scheme the kernel runs, and whether its sub-step count adapts per compression
+  // (1, 2, 4, ... up to contact_oversample()) or is fixed at contact_oversample().
+  ContactScheme contact_scheme() const;
+  bool adaptive_oversample() const;
   int active_mode_count() const;   // modes actually computed (below 0.45 fs, audible)
 
  private:

@@ -78,6 +78,7 @@ struct Options {
   bool quick = false;
   bool scene_only = false;  // --scene-only: just the scene cost figures (profiling)
   bool front_only = false;  // --front: just the comparison with the explicit reference
+  bool rub_only = false;    // --rub: just the 1-mode rub against the reference's x1 step
   int reps = 3;
   long stress = 0;
   std::string readme;               // --update-readme: replace the table between the bench markers
@@ -532,6 +533,7 @@ int ParseArgs(int argc, char** argv, Options& o) {
   app.add_flag("--quick", o.quick, "fewer oversamplings, phases and repetitions");
   app.add_flag("--scene-only", o.scene_only, "just the scene cost figures (profiling)");
   app.add_flag("--front", o.front_only, "just the comparison with the explicit reference");
+  app.add_flag("--rub", o.rub_only, "just the 1-mode rub against the reference's x1 step");
   app.add_option("--reps", o.reps, "repetitions, best taken (default 3)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--stress", o.stress, "run the stress test with this many randomised runs")
@@ -1013,6 +1015,10 @@ int main(int argc, char** argv) {
   if (const int code = ParseArgs(argc, argv, opt); code >= 0) return code;
   if (opt.stress > 0) return RunStress(opt.stress);
   if (opt.front_only) return RunFrontOnly(opt);
+  if (opt.rub_only) {
+    std::printf("%s", bench::RubCostMarkdown(opt.quick, opt.reps).c_str());
+    return 0;
+  }
   const auto bench_start = Clock::now();
 
   Sweep sweep;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -390,6 +391,62 @@ double RelativeRmsD(const std::vector<double>& y, const std::vector<double>& ref
 
 }  // namespace
 
+// The 1-mode rub's cost per sample against the reference's ×1 step: metal.toml's and wood.toml's
+// first mode, each with its own friction set (noise off), 1 N, 0.2 m/s. The two sides are timed in
+// alternating rounds, best of each, so a load that comes and goes on the machine weighs on both.
+// Errors: each against its own ×64 (the two models converge to slightly different limits).
+std::string RubCostMarkdown(bool quick, int bench_reps) {
+  constexpr double kRubSpeedMps = 0.2;
+  constexpr double kRatioTarget = 2.5;
+  const long frames = static_cast<long>((quick ? 0.2 : 0.5) * kFs);
+  const int rounds = quick ? 2 : std::max(bench_reps, 3) * 3;
+  std::ostringstream md;
+  char line[512];
+  md << "\n### The 1-mode rub against the reference's ×1 step\n\n"
+        "One mode (the material's first) rubbed at "
+     << kRubSpeedMps
+     << " m/s with 1 N, its own friction set (noise off), "
+     << static_cast<double>(frames) / kFs
+     << " s: the synth's kernel at ×1 against the explicit reference at ×1 (its forward-Euler "
+        "bristle and energy guard at 48 kHz), timed in "
+     << rounds
+     << " alternating rounds (thread CPU time, best of each). Error: relative RMS difference of the "
+        "pickup velocity from each side's own ×64. Target: synth / reference ≤ "
+     << kRatioTarget
+     << ".\n\n| material | synth ×1: error, ns per sample | reference ×1: error, ns per sample | "
+        "ratio synth / reference |\n|---|---|---|---:|\n";
+  const auto dirs = kiosk::MaterialSearchDirs("");
+  bool all_ok = true;
+  for (const char* name : {"metal", "wood"}) {
+    const kiosk::Material material = kiosk::FindMaterial(name, dirs);
+    const RubRun fine = KernelRub(material.params, 1, kRubSpeedMps, 64, frames, 0);
+    int guard = 0;
+    const RubRun fine_ref = ReferenceRub(material.params, 1, kRubSpeedMps, 64, frames, 0, &guard);
+    double kernel_ns = std::numeric_limits<double>::infinity(), reference_ns = kernel_ns;
+    double kernel_error = 0.0, reference_error = 0.0;
+    for (int round = 0; round < rounds; ++round) {
+      const RubRun k = KernelRub(material.params, 1, kRubSpeedMps, 1, frames, 1);
+      const RubRun r = ReferenceRub(material.params, 1, kRubSpeedMps, 1, frames, 1, &guard);
+      kernel_ns = std::min(kernel_ns, k.ns_per_sample);
+      reference_ns = std::min(reference_ns, r.ns_per_sample);
+      kernel_error = RelativeRmsD(k.out, fine.out);
+      reference_error = RelativeRmsD(r.out, fine_ref.out);
+    }
+    const double ratio = kernel_ns / reference_ns;
+    all_ok = all_ok && ratio <= kRatioTarget;
+    std::snprintf(line, sizeof line, "| %s | %s, %.0f | %s, %.0f | %.2f |\n", name,
+                  Sci(kernel_error).c_str(), kernel_ns, Sci(reference_error).c_str(), reference_ns,
+                  ratio);
+    md << line;
+    std::printf("rub cost: %s synth %.1f ns, reference %.1f ns per sample, ratio %.2f\n", name,
+                kernel_ns, reference_ns, ratio);
+    std::fflush(stdout);
+  }
+  md << "\nTarget (synth ≤ " << kRatioTarget << "× the reference's ×1 step): **"
+     << (all_ok ? "holds" : "does not hold") << "**.\n";
+  return md.str();
+}
+
 // Measures the default scheme against the explicit reference on the rigid wall and the heavy
 // plate; returns the markdown section, whose last table says whether the default costs <= 0.5x
 // the reference at 1e-4.
@@ -491,7 +548,7 @@ std::string FrictionFront(bool quick, int bench_reps) {
       std::fflush(stdout);
     }
   }
-  return md.str() + summary.str();
+  return md.str() + summary.str() + RubCostMarkdown(quick, bench_reps);
 }
 
 }  // namespace sas::bench
