@@ -913,6 +913,11 @@ ContactStepOutput SolveContactStep(const ImpactModel& impact, const FrictionMode
       return fast;
     }
   }
+  if (!in.impact_on) {
+    // Friction alone (a rub with the impact model off): no normal solve is ever asked for, so
+    // the normal solver's set-up (a power and two divisions) is not made.
+    return SolveCoupled(friction, in, [](double) { return NormalStep{}; });
+  }
   DiscreteGradientSolve solve(impact, in.x0, in.normal_compliance, in.h);
   return SolveCoupled(friction, in,
                       [&](double c) { return DiscreteGradientNormal(impact, solve, in.x0, c); });
