@@ -757,10 +757,14 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     limits.CacheStart(in.z0);
     const double inv_h = 1.0 / in.h;
     double last_u = std::numeric_limits<double>::quiet_NaN();
-    BristleStep bristle;
+    // Only the end deflection of the last step tried is kept: each evaluation's BristleStep stays
+    // a local the compiler can keep in registers (a captured one was written out, all 80 bytes,
+    // on every evaluation).
+    double bristle_z1 = 0.0;
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
       last_u = u;
-      bristle = StepBristle(friction, in.z0, u, limits);
+      const BristleStep bristle = StepBristle(friction, in.z0, u, limits);
+      bristle_z1 = bristle.z1;
       f = FrictionStepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
       if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
       return u - in.free_du - in.coupling * (ns.force - f);
@@ -777,7 +781,8 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       const double dforce_dc = ns.dforce_dc;
       auto search = [&](double uu) {
         last_u = uu;
-        bristle = StepBristle(friction, in.z0, uu, limits);
+        const BristleStep bristle = StepBristle(friction, in.z0, uu, limits);
+        bristle_z1 = bristle.z1;
         f = FrictionStepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
         const double force =
             in.impact_on ? std::max(force_a + dforce_dc * in.coupling * (f - f_a), 0.0) : 0.0;
@@ -809,7 +814,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
         if (!(u == last_u)) evaluate(u);
       }
     }
-    out.z1 = bristle.z1;
+    out.z1 = bristle_z1;
   }
   out.normal_n = ns.force;
   out.friction_n = f;
