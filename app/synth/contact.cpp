@@ -541,11 +541,29 @@ void FrictionModel::Set(const FrictionParams& params) {
   bristle_update = params.bristle_update;
   inv_v_s = 1.0 / v_s;
   inv_sigma0 = 1.0 / sigma0;
+  // |(μ_s - μ_d) f_N e^-s| < 2^-55 |μ_d f_N| for s beyond the cutoff: a quarter of an ulp of the
+  // sum's first term (ulp(x) >= |x| 2^-53, also for subnormals), so the rounded sum is that term,
+  // with or without a fused multiply-add, and the cutoff's one unit of margin covers the rounding
+  // of the Stribeck term and of the exp itself. Equal coefficients: the term is always 0.
+  const double spread = std::fabs(mu_s - mu_d);
+  if (spread == 0.0) {
+    stribeck_negligible_sq = -std::numeric_limits<double>::infinity();
+  } else if (std::fabs(mu_d) > 0.0) {
+    stribeck_negligible_sq = 55.0 * std::numbers::ln2 + std::log(spread / std::fabs(mu_d)) + 1.0;
+  } else {
+    stribeck_negligible_sq = std::numeric_limits<double>::infinity();
+  }
+  if (!(stribeck_negligible_sq == stribeck_negligible_sq)) {  // NaN coefficients: never skip
+    stribeck_negligible_sq = std::numeric_limits<double>::infinity();
+  }
 }
 
 double FrictionModel::SteadyDeflection(double v_mps, double fn) const {
   const double ratio = v_mps * inv_v_s;
-  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio * ratio)) * inv_sigma0;
+  const double ratio_sq = ratio * ratio;
+  // Past the cutoff the sum below rounds to its first term (Set): the same value, bit for bit.
+  if (ratio_sq > stribeck_negligible_sq) return (mu_d * fn) * inv_sigma0;
+  return (mu_d * fn + (mu_s - mu_d) * fn * std::exp(-ratio_sq)) * inv_sigma0;
 }
 
 double FrictionModel::SteadySlidingForce(double v_mps, double fn) const {

@@ -75,6 +75,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 
 #include "synth/material_params.h"
 
@@ -164,6 +165,10 @@ struct FrictionModel {
   double sigma0 = 0.0, sigma1 = 0.0, sigma2 = 0.0, sigma3 = 0.0;
   double mu_s = 0.0, mu_d = 0.0, v_s = 0.1, c_ba = 0.1;
   double inv_v_s = 10.0, inv_sigma0 = 0.0;  // 1 / v_s, 1 / σ0 (set by Set)
+  // (v / v_s)² beyond which the Stribeck term (μ_s - μ_d) f_N e^(-(v/v_s)²) is under a quarter of
+  // an ulp of μ_d f_N, so that adding it cannot change z_ss: SteadyDeflection then skips the exp
+  // (a fast slide on a material with a low Stribeck speed: glass). +inf (never) until Set.
+  double stribeck_negligible_sq = std::numeric_limits<double>::infinity();
   BristleUpdate bristle_update = BristleUpdate::kExponential;
 
   void Set(const FrictionParams& params);

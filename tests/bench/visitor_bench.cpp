@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -148,9 +149,19 @@ struct StrokeResult {
 
 // Renders the commands in blocks; returns CPU seconds of the blocks before and after the lift,
 // and each block's in *block_s.
+// FNV-1a over the bytes of every output sample (--checksum: a speed-up that claims to leave the
+// output bit for bit the same can be checked by running the benchmark before and after it).
+void HashSamples(const float* samples, int count, std::uint64_t* hash) {
+  const auto* bytes = reinterpret_cast<const unsigned char*>(samples);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count) * sizeof(float); ++i) {
+    *hash = (*hash ^ bytes[i]) * 1099511628211ull;
+  }
+}
+
+// `hash` (may be null): the rendered samples are hashed into it (outside the timed calls).
 void TimedRender(synth::Scene& scene, const std::vector<kiosk::TimedCommand>& commands,
                  long pen_down, long frames, int block, std::vector<float>& out, double* down_s,
-                 double* tail_s, std::vector<double>* block_s) {
+                 double* tail_s, std::vector<double>* block_s, std::uint64_t* hash = nullptr) {
   scene.Reset();
   std::size_t next = 0;
   std::vector<synth::ProbeCommand> pending;
@@ -169,13 +180,14 @@ void TimedRender(synth::Scene& scene, const std::vector<kiosk::TimedCommand>& co
     const double t0 = CpuSeconds();
     scene.Process(pending.data(), static_cast<int>(pending.size()), out.data(), n);
     const double dt = CpuSeconds() - t0;
+    if (hash != nullptr) HashSamples(out.data(), 2 * n, hash);
     (start < pen_down ? *down_s : *tail_s) += dt;
     block_s->push_back(dt);
   }
 }
 
 StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::VisitorStroke& stroke,
-                       int reps, bool stats) {
+                       int reps, bool stats, std::uint64_t* hash) {
   StrokeResult r;
   r.style = stroke.name;
   long pen_down = 0;
@@ -201,7 +213,8 @@ StrokeResult RunStroke(const Texture& tex, synth::Scene& scene, const kiosk::Vis
   };
   for (int rep = 0; rep <= reps; ++rep) {  // rep 0: warm-up
     double down = 0.0, tail = 0.0;
-    TimedRender(scene, commands, pen_down, frames, kBlock, out, &down, &tail, &blocks);
+    TimedRender(scene, commands, pen_down, frames, kBlock, out, &down, &tail, &blocks,
+                rep == 0 ? hash : nullptr);
     if (rep == 0) continue;
     best_down = std::min(best_down, down);
     best_tail = std::min(best_tail, tail);
@@ -273,6 +286,7 @@ struct Options {
   int reps = 3;
   bool quick = false;
   bool stats = true;  // --cost-only: no instrumented pass (profiling)
+  bool checksum = false;  // --checksum: print a hash of each texture's output
   std::string docs = SAS_DOCS_DIR;
   std::string textures = SAS_TEXTURES_DIR;
   std::string only;  // --texture: one texture's key (its folder name), for profiling
@@ -294,6 +308,7 @@ int ParseArgs(int argc, char** argv, Options& o) {
   app.add_option("--textures", o.textures, "the kiosk textures (default the source tree's)");
   app.add_flag("--quick", o.quick, "at most 30 strokes, one repetition");
   app.add_option("--texture", o.only, "play this texture only (its folder name; profiling)");
+  app.add_flag("--checksum", o.checksum, "print a hash of each texture's rendered output");
   bool cost_only = false;
   app.add_flag("--cost-only", cost_only, "time without counting (profiling)");
   if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
@@ -364,8 +379,9 @@ Summary MeasureTexture(const Texture& tex, const std::vector<kiosk::VisitorStrok
              (scene.adaptive_oversample() ? " adaptive" : "");
   std::vector<double> tails;
   double worst = -1.0;
+  std::uint64_t hash = 1469598103934665603ull;
   for (std::size_t i = 0; i < population.size(); ++i) {
-    const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats);
+    const StrokeResult r = RunStroke(tex, scene, population[i], opt.reps, opt.stats, &hash);
     costs->push_back(r.core_percent);
     s.by_style[r.style].push_back(r.core_percent);
     tails.push_back(r.tail_core_percent);
@@ -376,6 +392,10 @@ Summary MeasureTexture(const Texture& tex, const std::vector<kiosk::VisitorStrok
       s.worst_stroke = DescribeStroke(i, r.style, population[i].pen);
     }
     counts->Add(r.samples);
+  }
+  if (opt.checksum) {
+    std::printf("%-16s output checksum %016llx\n", s.name.c_str(),
+                static_cast<unsigned long long>(hash));
   }
   s.median = sas::kiosk::Percentile(*costs, 0.5);
   s.p95 = sas::kiosk::Percentile(*costs, 0.95);

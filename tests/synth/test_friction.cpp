@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <optional>
+#include <random>
 #include <vector>
 
 #include "synth/contact.h"
@@ -309,4 +310,43 @@ TEST_CASE(
   FrictionModel none = model;
   none.sigma2 = 0.0;
   CHECK(&ViscousAtLoad(none, 0.01, light) == &none);
+}
+
+TEST_CASE(
+    "the Stribeck exp is left out only where it cannot change z_ss: past the cutoff the steady "
+    "deflection equals the full Stribeck formula bit for bit, for random coefficient sets",
+    "[dsp]") {
+  std::mt19937_64 rng(20261201);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto log_uniform = [&](double lo, double hi) {
+    return lo * std::pow(hi / lo, unit(rng));
+  };
+  long skipped = 0, compared = 0;
+  for (int set = 0; set < 400; ++set) {
+    FrictionParams p;
+    p.dynamic_coefficient = log_uniform(0.01, 1.0);
+    // Static above or below the dynamic coefficient (the model allows both).
+    p.static_coefficient = p.dynamic_coefficient * log_uniform(0.3, 30.0);
+    p.stribeck_velocity_mps = log_uniform(1e-3, 1.0);
+    p.bristle_stiffness = log_uniform(1e2, 1e7);
+    FrictionModel model;
+    model.Set(p);
+    const double fn = log_uniform(1e-3, 10.0);
+    // The full formula as the model writes it, the exp always taken.
+    const auto full = [&](double v) {
+      const double ratio = v * model.inv_v_s;
+      return (model.mu_d * fn + (model.mu_s - model.mu_d) * fn * std::exp(-ratio * ratio)) *
+             model.inv_sigma0;
+    };
+    // Speeds from 4 to 10 Stribeck speeds, across the cutoff (about 6.2 .. 6.6 for these sets).
+    for (int i = 0; i <= 600; ++i) {
+      const double v = p.stribeck_velocity_mps * (4.0 + 0.01 * i);
+      const double ratio = v * model.inv_v_s;
+      if (ratio * ratio > model.stribeck_negligible_sq) ++skipped;
+      ++compared;
+      REQUIRE(model.SteadyDeflection(v, fn) == full(v));
+    }
+  }
+  // The cutoff is reached (else the comparison would not test the skip).
+  CHECK(skipped > compared / 4);
 }
