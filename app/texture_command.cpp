@@ -900,6 +900,7 @@ int RunTextureCommand(const std::vector<std::string>& args, std::FILE* out, std:
   auto* preview = app.add_subcommand("preview", "render visitor strokes to WAVs and PNGs");
   preview->add_option("folder", folder, "the texture folder")->required();
   preview->add_option("--out", preview_out, "where the WAVs, PNGs and preview.txt go")->required();
+  preview->add_option("--config", config_path, "the kiosk.toml whose languages it must speak");
   auto* install = app.add_subcommand("install", "check, then copy into <staff_dir>/textures/");
   install->add_option("folder", folder, "the texture folder")->required();
   install->add_option("--config", config_path,

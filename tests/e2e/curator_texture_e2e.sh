@@ -4,7 +4,7 @@
 # scan (a CSV line of heights, made here), a shipped material and a name and description in the
 # five languages; `texture check` passes it; `texture install --token 3` puts it into a staff
 # folder and kiosk.toml; the headless visit with that kiosk.toml shows it on token 3, strokes it in
-# every style (non-silent WAVs, dented PNGs) and says its name with its own cue; over the visitor
+# every style (non-silent WAVs, dented PNGs; texture preview likewise) and says its name with its own cue; over the visitor
 # population the tests hold out, its median loudness is within 1 LU of the shipped textures' mean
 # (curator_levels_check).
 # usage: curator_texture_e2e.sh <sketch-a-scratch> <curator_levels_check> photo|scan
@@ -77,6 +77,27 @@ done
 cat "$work/check.log"
 grep -q "no problems" "$work/check.log" || fail "texture check did not say 'no problems'"
 grep -q "felt relief" "$work/check.log" || fail "texture check printed no felt relief"
+
+# The preview: a stroke per style, its WAV and a snapshot with the dent (it differs from the plain
+# picture).
+"$app" texture preview "$work/$key" --config "$config" --out "$work/preview" >"$work/preview.log" 2>&1 ||
+  { cat "$work/preview.log"; fail "texture preview failed"; }
+for style in scrape rub roll; do
+  grep -q "^stroke ${key}_$style .*loudness_lufs=" "$work/preview/preview.txt" ||
+    fail "the preview has no $style stroke"
+  [ -s "$work/preview/${key}_$style.wav" ] || fail "the preview wrote no $style WAV"
+  # Around the pen's tip at the snapshot (x, y of preview.txt), not the banners elsewhere.
+  line=$(grep "^stroke ${key}_$style " "$work/preview/preview.txt")
+  x=$(sed 's/.* x=\([0-9]*\).*/\1/' <<<"$line")
+  y=$(sed 's/.* y=\([0-9]*\).*/\1/' <<<"$line")
+  crop="60x60+$((x - 30))+$((y - 30))"
+  convert "$work/preview/$key.png" -crop "$crop" +repage "$work/plain_tip.png"
+  convert "$work/preview/${key}_$style.png" -crop "$crop" +repage "$work/dent_tip.png"
+  changed=$(compare -metric AE "$work/plain_tip.png" "$work/dent_tip.png" null: 2>&1)
+  [ "${changed%% *}" -gt 50 ] 2>/dev/null ||
+    fail "the $style snapshot shows no dent at the tip ($changed pixels differ around $x,$y)"
+done
+echo "ok: texture preview wrote a WAV and a dented snapshot per style"
 
 "$app" texture install "$work/$key" --config "$config" --token 3 >"$work/install.log" 2>&1 ||
   { cat "$work/install.log"; fail "texture install failed"; }

@@ -87,7 +87,7 @@ TEST_CASE(
          std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
          in.close();
          // Everything from [levels] to [probe] goes: the texture has no stroke table.
-         const auto from = text.find("[levels]"), to = text.find("[probe]");
+         const auto from = text.find("\n[levels]"), to = text.find("\n[probe]");
          std::ofstream(f / "texture.toml") << text.substr(0, from) + text.substr(to);
        },
        "[levels]"},
