@@ -215,6 +215,15 @@ void KioskEngine::LoadTextures() {
       std::find(texture_keys_.begin(), texture_keys_.end(), options_.config.default_texture);
   default_texture_ =
       found == texture_keys_.end() ? 0 : static_cast<int>(found - texture_keys_.begin());
+  if (found == texture_keys_.end()) {
+    // A curator's texture took the default's token: the idle screen shows what that token shows.
+    const auto shipped = KioskTextureNames();
+    const auto place = std::find(shipped.begin(), shipped.end(), options_.config.default_texture);
+    const auto token = static_cast<std::size_t>(place - shipped.begin());
+    if (place != shipped.end() && token < token_texture_.size() && token_texture_[token] >= 0) {
+      default_texture_ = token_texture_[token];
+    }
+  }
 }
 
 KioskEngine::~KioskEngine() {

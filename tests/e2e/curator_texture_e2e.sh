@@ -57,7 +57,7 @@ else
 fi
 
 start=$(date +%s)
-"$app" texture new "$work/$key" "${source[@]}" "${texts[@]}" --config "$config" \
+"$app" texture new "$work/$key" "${source[@]}" "${texts[@]}" --token 3 --config "$config" \
   >"$work/new.log" 2>&1 || { cat "$work/new.log"; fail "texture new exited $?"; }
 cat "$work/new.log"
 echo "texture new took $(($(date +%s) - start)) s"

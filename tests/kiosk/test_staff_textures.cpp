@@ -51,7 +51,9 @@ bool Warned(const std::string& what) {
 
 }  // namespace
 
-TEST_CASE("a staff texture named in kiosk.toml shows on its token, beside the shipped ones",
+TEST_CASE(
+    "a staff texture named in kiosk.toml shows on its token, beside the shipped ones, and on the "
+    "idle screen when it took the default texture's token",
           "[kiosk]") {
   sas::test::TempDir staff;
   CopyShipped(staff.path() / "textures", "riverbed");
@@ -64,6 +66,8 @@ TEST_CASE("a staff texture named in kiosk.toml shows on its token, beside the sh
   CHECK(engine.textures()[2].loaded.file.names.at("de") == "Flussbett");
   CHECK(engine.TokenForTexture(2) == 2);
   CHECK(engine.texture_failures().empty());
+  // The default texture (wooden board) was token 3's: the idle screen shows what token 3 shows.
+  CHECK(engine.default_texture() == 2);
 }
 
 TEST_CASE(
