@@ -37,6 +37,12 @@ class Visit {
         view_(engine_, options.width_px, options.height_px),
         driver_(engine_, MakeHooks()) {
     engine_.SetRecorder(&mic_.recorder());
+    // Every cue the visit hears, for visit.txt (a curator's texture must say its own name).
+    engine_.SetCueObserver([this](const kiosk::CueEvent& cue) {
+      heard_ += "cue " + cue.language + " " + cue.key + " t=" +
+                std::to_string(static_cast<double>(cue.time_ns) * 1e-9) + " text=" + cue.text +
+                "\n";
+    });
     mic_.Start();
     driver_.SetMicrophone(&mic_);
   }
@@ -51,9 +57,18 @@ class Visit {
     // The scripted visit plays the shipped cues, whatever a box's staff recorded: the same visit
     // and the same files on every machine.
     engine.config.staff_dir.clear();
+    if (!options.config_path.empty()) {
+      // A kiosk's token choices and its staff's textures (a curator's new texture on its token),
+      // still with the shipped voice for everything else.
+      const kiosk::KioskConfig box = kiosk::LoadKioskConfig(options.config_path);
+      engine.config.token_textures = box.token_textures;
+      engine.config.staff_dir = box.staff_dir;
+      engine.staff_cues = false;
+    }
     engine.screen_width_px = options.width_px;
     engine.screen_height_px = options.height_px;
     engine.virtual_clock = true;
+    if (!options.texture_paths.empty()) engine.texture_paths = options.texture_paths;
     return engine;
   }
 
@@ -136,6 +151,8 @@ class Visit {
   void ClearAudio() { driver_.ClearOutput(); }
   // Loudness (LUFS, ch 1) and vibration strength (dB RMS, ch 2) of each stroke so far, by name.
   const std::map<std::string, std::pair<double, double>>& levels() const { return levels_; }
+  // visit.txt's "cue <language> <key> t=<s> text=<sentence>" lines of the cues heard so far.
+  const std::string& heard() const { return heard_; }
 
  private:
   kiosk::VirtualVisit::Hooks MakeHooks() {
@@ -156,6 +173,7 @@ class Visit {
   kiosk::VirtualVisit driver_;  // the audio loop on the virtual clock (after engine and view)
   std::string plain_;
   std::map<std::string, std::pair<double, double>> levels_;
+  std::string heard_;
 };
 
 // The visit's strokes: every style on every texture, three times each (kDirections).
@@ -435,6 +453,7 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     report += std::string("idle_reset voice_wiped=") + (wiped ? "yes" : "no") +
               " attract=" + (visit.view().attract() ? "yes" : "no") + "\n";
     visit.SavePlain("idle_reset");
+    report += visit.heard();
     {
       std::FILE* file = std::fopen((fs::path(out_dir) / "visit.txt").c_str(), "w");
       if (file == nullptr) {
@@ -460,6 +479,66 @@ int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* e
     return 0;
   } catch (const std::exception& error) {
     std::fprintf(err, "sketch-a-scratch: headless visit failed: %s\n", error.what());
+    return 1;
+  }
+}
+
+int RunTexturePreview(const std::string& texture_toml, const std::string& out_dir, std::FILE* out,
+                      std::FILE* err) {
+  try {
+    HeadlessOptions options;
+    options.out_dir = out_dir;
+    options.texture_paths = {texture_toml};
+    // The others as the kiosk holds them: the per-stroke matching refers to their levels.
+    for (const auto& path : kiosk::FindTextureFiles()) {
+      if (fs::path(path).parent_path().filename() != fs::path(texture_toml).parent_path().filename())
+        options.texture_paths.push_back(path);
+    }
+    fs::create_directories(out_dir);
+    Visit visit(options, out);
+    if (!visit.engine().texture_failures().empty() ||
+        visit.engine().textures().front().key !=
+            fs::path(texture_toml).parent_path().filename().string()) {
+      std::fprintf(err, "sketch-a-scratch texture preview: %s does not load\n",
+                   texture_toml.c_str());
+      return 1;
+    }
+    const std::string key = visit.engine().textures().front().key;
+    visit.Token(0);
+    visit.Run(0.6);
+    visit.SavePlain(key);
+    std::string report = "# sketch-a-scratch " + std::string(kVersion) + " preview of " +
+                         texture_toml + ": one line per stroke\n";
+    int row = 0;
+    for (const auto& style : kStyles) {
+      kiosk::PenStroke stroke{0.2, 0.3 + 0.2 * row, 0.75, 0.35 + 0.2 * row, 0.0, 0.55, 0.0, {}};
+      stroke.tilt_deg = style.tilt_deg;
+      stroke.style = style.style;
+      stroke.hover_s = 0.04;
+      const std::string name = key + "_" + style.name;
+      std::string line = visit.DoStroke(name, stroke);
+      const auto level = visit.levels().at(name);
+      char figures[96];
+      std::snprintf(figures, sizeof figures, " loudness_lufs=%.1f vibration_db=%.1f", level.first,
+                    level.second);
+      line.insert(line.size() - 1, figures);
+      report += line;
+      ++row;
+    }
+    report += visit.heard();
+    std::FILE* file = std::fopen((fs::path(out_dir) / "preview.txt").c_str(), "w");
+    if (file == nullptr) {
+      std::fprintf(err, "sketch-a-scratch texture preview: cannot write preview.txt in %s\n",
+                   out_dir.c_str());
+      return 1;
+    }
+    std::fputs(report.c_str(), file);
+    std::fclose(file);
+    std::fprintf(out, "Preview of %s in %s (preview.txt lists the WAVs and PNGs)\n", key.c_str(),
+                 fs::absolute(out_dir).c_str());
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(err, "sketch-a-scratch texture preview: %s\n", error.what());
     return 1;
   }
 }

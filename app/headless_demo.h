@@ -27,6 +27,11 @@ struct HeadlessOptions {
   // --quick (the sanitizer build's test): shorter strokes, tails, countdown and idle timeout;
   // the same visit otherwise.
   bool quick = false;
+  // demo --config: the tokens' textures ([textures]) and the staff's own textures (staff_dir) of
+  // that kiosk.toml; the rest of the visit (gains, timings, cues) stays the scripted one's.
+  std::string config_path;
+  // When set: exactly these texture files, in token order (texture preview).
+  std::vector<std::string> texture_paths;
   double stroke_s() const { return quick ? 0.5 : 1.2; }
   // Glass rings longest (a 0.34 s decay): 2 s takes a loud rub some 50 dB down, below -45 dBFS.
   double tail_s() const { return 2.0; }
@@ -38,5 +43,13 @@ void AddHeadlessOptions(CLI::App& app, HeadlessOptions& options);
 
 // Runs the visit; returns the process exit code (0 ok, 1 failure). Never throws.
 int RunHeadlessDemo(const HeadlessOptions& options, std::FILE* out, std::FILE* err);
+
+// `texture preview`: the kiosk engine holding `texture_toml` with the shipped textures beside it
+// (as the kiosk holds its four), the texture chosen by its token and stroked once in each style
+// (scrape, rub, roll) through the same visit as the headless default: per stroke a 2-channel WAV
+// and a PNG snapshot with the tip's dent, the plain picture, and preview.txt listing them with
+// each stroke's loudness. Returns 0 when everything was written, 1 on failure. Never throws.
+int RunTexturePreview(const std::string& texture_toml, const std::string& out_dir, std::FILE* out,
+                      std::FILE* err);
 
 }  // namespace sas::app

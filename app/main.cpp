@@ -13,6 +13,7 @@
 #include "sas/version.h"
 #include "tools/command_line.h"
 #include "tools/impact_command.h"
+#include "texture_command.h"
 #include "tools/render_command.h"
 #include "ui/display_probe.h"
 
@@ -28,6 +29,9 @@ constexpr const char* kCommands =
     "                              the kiosk (exits 1 when there is no display); also --kiosk\n"
     "  render --out FILE.wav ...   render a material, surface and gesture to a 2-channel WAV\n"
     "  impact ...                  one probe impact on a rigid wall, JSON vs the closed form\n"
+    "  texture new|check|preview|install ...\n"
+    "                              a curator's own texture: from a photo or scan, checked, "
+    "installed\n"
     "Exit status: 0 ok, 1 runtime error, 2 usage error.";
 
 int RunDemo(const Args& args) {
@@ -37,6 +41,9 @@ int RunDemo(const Args& args) {
       "PNGs and visit.txt.",
       "demo");
   sas::app::AddHeadlessOptions(app, options);
+  app.add_option("--config", options.config_path,
+                 "a kiosk.toml whose tokens ([textures]) and staff textures (staff_dir) the visit "
+                 "shows (default: the shipped four)");
   if (const int code = sas::kiosk::ParseCommandLine(app, args, stdout, stderr); code >= 0) {
     return code;
   }
@@ -125,6 +132,7 @@ int main(int argc, char** argv) {
   if (command == "render") return sas::kiosk::RunRenderCommand(rest, stdout, stderr);
   if (command == "impact") return sas::kiosk::RunImpactCommand(rest, stdout, stderr);
   if (command == "demo") return RunDemo(rest);
+  if (command == "texture") return sas::app::RunTextureCommand(rest, stdout, stderr);
   if (command == "kiosk" || command == "--kiosk") return sas::app::RunKiosk(rest, stdout, stderr);
   return RunDefault(args);
 }

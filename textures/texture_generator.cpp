@@ -38,45 +38,6 @@ using sas::textures::Canvas;
 using sas::textures::kPitchMm;
 using sas::textures::TextureOut;
 
-// a blank-free block of rows per width.
-std::string LevelsToml(const sas::surface::StrokeLevelTable& levels) {
-  const auto list = [](const std::vector<double>& values, std::size_t from, std::size_t count,
-                       std::size_t per_row) {
-    std::string out = "[";
-    char number[32];
-    for (std::size_t i = 0; i < count; ++i) {
-      if (i > 0) out += i % per_row == 0 ? ",\n  " : ", ";
-      std::snprintf(number, sizeof number, "%.2f", values[from + i] + 0.0);
-      out += number;
-    }
-    return out + "]\n";
-  };
-  const std::size_t widths = levels.scrape_widths_mm.size();
-  const std::size_t speeds = levels.speeds_mm_s.size(), pressures = levels.pressures.size();
-  std::string out =
-      "\n[levels]\n# This texture's stroke levels at the gains above, measured on the grid below "
-      "(levels/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
-      "one value per pressure.\n# The kiosk corrects each stroke towards the median of the loaded "
-      "textures' levels for it.\n";
-  out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
-  out += "rub_widths_mm = " + list(levels.rub_widths_mm, 0, widths, widths);
-  const std::size_t rolls = levels.roll_widths_mm.size();
-  if (levels.styles() > 2)
-    out += "roll_widths_mm = " + list(levels.roll_widths_mm, 0, rolls, rolls);
-  out += "speeds_mm_s = " + list(levels.speeds_mm_s, 0, speeds, speeds);
-  out += "pressures = " + list(levels.pressures, 0, pressures, pressures);
-  const char* names[] = {"scrape", "rub", "roll"};
-  for (int style = 0; style < levels.styles(); ++style) {
-    const std::size_t from = levels.Index(style, 0, 0, 0);
-    const std::size_t per_style = levels.widths_mm(style).size() * speeds * pressures;
-    out += std::string(names[style]) +
-           "_sound_lufs = " + list(levels.sound_lufs, from, per_style, pressures);
-    out += std::string(names[style]) +
-           "_haptic_rms_db = " + list(levels.haptic_rms_db, from, per_style, pressures);
-  }
-  return out;
-}
-
 void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas& c) {
   const auto folder = root / t.folder;
   std::filesystem::create_directories(folder);
@@ -131,7 +92,7 @@ void Write(const TextureOut& t, const std::filesystem::path& root, const Canvas&
       "K-weighted) and %.1f dB RMS\n# (ch 2, skin-weighted).\n",
       sas::kiosk::CalibrationStrokes().size(), grid.places, sas::kiosk::kTargetSoundLufs,
       sas::kiosk::kTargetHapticRmsDb);
-  write_toml(calibration.gains, note, LevelsToml(calibration.levels));
+  write_toml(calibration.gains, note, sas::kiosk::LevelTableToml(calibration.levels));
 }
 
 }  // namespace

@@ -366,4 +366,42 @@ double Percentile(std::vector<double> v, double p) {
   return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
 }
 
+std::string LevelTableToml(const surface::StrokeLevelTable& levels) {
+  const auto list = [](const std::vector<double>& values, std::size_t from, std::size_t count,
+                       std::size_t per_row) {
+    std::string out = "[";
+    char number[32];
+    for (std::size_t i = 0; i < count; ++i) {
+      if (i > 0) out += i % per_row == 0 ? ",\n  " : ", ";
+      std::snprintf(number, sizeof number, "%.2f", values[from + i] + 0.0);
+      out += number;
+    }
+    return out + "]\n";
+  };
+  const std::size_t widths = levels.scrape_widths_mm.size();
+  const std::size_t speeds = levels.speeds_mm_s.size(), pressures = levels.pressures.size();
+  std::string out =
+      "\n[levels]\n# This texture's stroke levels at the gains above, measured on the grid below "
+      "(levels/stroke_gain.h):\n# per style, per probe width one block of rows, one row per speed, "
+      "one value per pressure.\n# The kiosk corrects each stroke towards the median of the loaded "
+      "textures' levels for it.\n";
+  out += "scrape_widths_mm = " + list(levels.scrape_widths_mm, 0, widths, widths);
+  out += "rub_widths_mm = " + list(levels.rub_widths_mm, 0, widths, widths);
+  const std::size_t rolls = levels.roll_widths_mm.size();
+  if (levels.styles() > 2)
+    out += "roll_widths_mm = " + list(levels.roll_widths_mm, 0, rolls, rolls);
+  out += "speeds_mm_s = " + list(levels.speeds_mm_s, 0, speeds, speeds);
+  out += "pressures = " + list(levels.pressures, 0, pressures, pressures);
+  const char* names[] = {"scrape", "rub", "roll"};
+  for (int style = 0; style < levels.styles(); ++style) {
+    const std::size_t from = levels.Index(style, 0, 0, 0);
+    const std::size_t per_style = levels.widths_mm(style).size() * speeds * pressures;
+    out += std::string(names[style]) +
+           "_sound_lufs = " + list(levels.sound_lufs, from, per_style, pressures);
+    out += std::string(names[style]) +
+           "_haptic_rms_db = " + list(levels.haptic_rms_db, from, per_style, pressures);
+  }
+  return out;
+}
+
 }  // namespace sas::kiosk

@@ -222,4 +222,8 @@ TextureCalibration CalibrateTexture(const std::string& texture_toml,
                                     double target_haptic_rms_db = kTargetHapticRmsDb,
                                     const CalibrationGrid& grid = {});
 
+// A texture's [levels] table as texture.toml text (texture_generator, texture new): the axes, then
+// per style one row per speed of one value per pressure, a block of rows per width.
+std::string LevelTableToml(const surface::StrokeLevelTable& levels);
+
 }  // namespace sas::kiosk

@@ -189,6 +189,23 @@ auto RealOrOff(double KioskConfig::*member, double min, double max) {
   };
 }
 
+// A texture's folder name: lower-case letters, digits and '_' (it names cue files and counters,
+// and may never leave the textures folder).
+auto TokenTexture(std::size_t token) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
+    const bool ok = !value->empty() && value->size() <= 64 &&
+                    std::all_of(value->begin(), value->end(), [](char c) {
+                      return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                    });
+    if (!ok) {
+      throw ConfigError(where + "expected a texture folder name (lower-case letters, digits, _)");
+    }
+    config.token_textures[token] = *value;
+  };
+}
+
 const std::vector<KeySpec>& Schema() {
   static const std::vector<KeySpec> schema = {
       {"audio", "output_device", Text(&KioskConfig::output_device)},
@@ -244,6 +261,10 @@ const std::vector<KeySpec>& Schema() {
       {"transducer", "resonance_hz",
        RealOrOff(&KioskConfig::transducer_resonance_hz, 20.0, 1000.0)},
       {"transducer", "q", Real(&KioskConfig::transducer_q, 0.3, 50.0)},
+      {"textures", "token_1", TokenTexture(0)},
+      {"textures", "token_2", TokenTexture(1)},
+      {"textures", "token_3", TokenTexture(2)},
+      {"textures", "token_4", TokenTexture(3)},
       {"paths", "staff_dir", Folder(&KioskConfig::staff_dir)},
   };
   return schema;

@@ -86,9 +86,16 @@ struct KioskConfig {
   // broadband transducer, nothing compensated.
   double transducer_resonance_hz = 0.0;
   double transducer_q = 1.0;
+  // [textures] token_1 .. token_4 — which texture each token shows: a folder name, looked up
+  // first among the staff's own textures (<staff_dir>/textures/<name>/, `sketch-a-scratch texture
+  // install` puts them there), then among the shipped ones. A staff texture that does not load is
+  // refused with a warning and its token shows the shipped texture of its place.
+  std::vector<std::string> token_textures = {"bubble_wrap", "broken_glass", "wooden_board",
+                                             "cracked_ground"};
   // [paths] — where staff put their own files, outside the package's (an upgrade, a removal and a
   // reinstall keep them; a purge removes them with kiosk.toml): recorded cues in
-  // <staff_dir>/cues/<language>/<cue key>.wav (kiosk/staff_cues.h). "": none are read.
+  // <staff_dir>/cues/<language>/<cue key>.wav (kiosk/staff_cues.h), their own textures in
+  // <staff_dir>/textures/<name>/. "": none are read.
   std::string staff_dir = "/etc/sketch-a-scratch";
 };
 

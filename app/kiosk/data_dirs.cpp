@@ -58,6 +58,36 @@ std::string FindTextureFile(const std::string& name) {
   return {};
 }
 
+std::string StaffTexturesDir(const std::string& staff_dir) {
+  return staff_dir.empty() ? std::string() : (fs::path(staff_dir) / kStaffTexturesFolder).string();
+}
+
+std::vector<TokenTexture> ResolveTokenTextures(const std::vector<std::string>& token_textures,
+                                               const std::string& staff_dir) {
+  std::vector<TokenTexture> tokens;
+  const std::string staff = StaffTexturesDir(staff_dir);
+  for (std::size_t i = 0; i < token_textures.size(); ++i) {
+    const std::string& name = token_textures[i];
+    TokenTexture token;
+    const std::string shipped_here = i < kTextureKeys.size() ? kTextureKeys[i] : kTextureKeys[0];
+    const fs::path staff_file = fs::path(staff) / name / "texture.toml";
+    std::error_code error;
+    if (!staff.empty() && fs::exists(staff_file.parent_path(), error)) {
+      // A folder of that name is the staff's choice even when its texture.toml is missing: the
+      // load then refuses it, saying so, rather than quietly showing the shipped one.
+      token.path = staff_file.string();
+      token.staff = true;
+    } else {
+      token.path = FindTextureFile(name);
+    }
+    if (token.staff || token.path.empty() || name != shipped_here) {
+      token.fallback = FindTextureFile(shipped_here);
+    }
+    tokens.push_back(token);
+  }
+  return tokens;
+}
+
 std::string FindStringsDir() {
   for (const auto& dir : DataDirs("strings")) {
     std::error_code error;

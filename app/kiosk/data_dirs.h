@@ -18,6 +18,23 @@ std::vector<std::string> KioskTextureNames();
 // textures/<name>/texture.toml for kiosk texture `name`, from the first data folder holding it
 // (the order above); "" when `name` is no kiosk texture or no folder holds it.
 std::string FindTextureFile(const std::string& name);
+// The staff's own textures: <staff_dir>/textures (outside the package: upgrades and reinstalls
+// keep them, a purge removes them with the rest of the staff's files). "" when staff_dir is "".
+inline constexpr const char* kStaffTexturesFolder = "textures";
+std::string StaffTexturesDir(const std::string& staff_dir);
+
+// What a token shows: the texture file for its configured name (a staff texture of that name
+// first, then a shipped one), and the shipped texture of the token's place to fall back on when
+// that one does not load ("" when it is itself the shipped one).
+struct TokenTexture {
+  std::string path;      // "" when no folder holds the name (the fallback is then used)
+  std::string fallback;  // the shipped texture of the token's place
+  bool staff = false;    // path is a staff texture
+};
+// One per token, for `token_textures` (KioskConfig [textures]) and `staff_dir`.
+std::vector<TokenTexture> ResolveTokenTextures(const std::vector<std::string>& token_textures,
+                                               const std::string& staff_dir);
+
 // <data>/cues: $SAS_DATA_DIR/cues, the build's cue folder, the installed one; "" when none exists.
 std::string FindCuesDir();
 // <data>/strings (the language tables, strings.h), the same search order; "" when none has en.toml.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
+#include <optional>
 #include <stdexcept>
 
 #include "files/atomic_file.h"
@@ -54,9 +55,11 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
   if (options_.spoken_cues) {
     cues_dir = options_.cues_dir.empty() ? FindCuesDir() : options_.cues_dir;
   }
-  cues_ = SpokenCues(options_.config,
+  KioskConfig cue_config = options_.config;
+  if (!options_.staff_cues) cue_config.staff_dir.clear();
+  cues_ = SpokenCues(cue_config,
                      options_.strings_dir.empty() ? FindStringsDir() : options_.strings_dir,
-                     std::move(cues_dir), options_.spoken_cues, texture_keys_);
+                     std::move(cues_dir), options_.spoken_cues, texture_keys_, texture_dirs_);
   SessionConfig session;
   session.texture_count = static_cast<int>(textures_.size());
   session.default_texture = default_texture_;
@@ -114,7 +117,22 @@ KioskEngine::KioskEngine(KioskEngineOptions options)
 }
 
 void KioskEngine::LoadTextures() {
-  if (options_.texture_paths.empty()) options_.texture_paths = FindTextureFiles();
+  if (options_.texture_paths.empty()) {
+    // The tokens' textures as configured ([textures], the staff's own first), each with the
+    // shipped texture of its place to fall back on.
+    options_.texture_fallbacks.clear();
+    for (const auto& token :
+         ResolveTokenTextures(options_.config.token_textures, options_.config.staff_dir)) {
+      options_.texture_paths.push_back(token.path.empty() ? token.fallback : token.path);
+      options_.texture_fallbacks.push_back(token.path.empty() ? "" : token.fallback);
+      staff_texture_.push_back(token.staff && !token.path.empty());
+    }
+    if (std::find(options_.texture_paths.begin(), options_.texture_paths.end(), "") !=
+        options_.texture_paths.end()) {
+      options_.texture_paths = FindTextureFiles();  // throws, saying where it looked
+    }
+  }
+  staff_texture_.resize(options_.texture_paths.size(), false);
   const auto dirs = MaterialSearchDirs(options_.materials_dir);
   surface::TextureLoadOptions load;
   load.pixel_pitch_mm = surface::DisplayGeometry{}.pixel_pitch_mm();
@@ -126,26 +144,64 @@ void KioskEngine::LoadTextures() {
     pending.push_back(std::async(std::launch::async,
                                  [&path, &load] { return surface::LoadTexture(path, load); }));
   }
+  // A texture and its material: a texture's own folder holds a material made for it.
+  const auto complete = [&](const std::string& path, surface::LoadedTexture loaded, bool staff) {
+    EngineTexture texture;
+    texture.key = fs::path(path).parent_path().filename().string();
+    texture.loaded = std::move(loaded);
+    std::vector<std::string> search = dirs;
+    search.insert(search.begin(), fs::path(path).parent_path().string());
+    texture.material = FindMaterial(texture.loaded.file.material, search);
+    // A staff texture is the curator's work: one never calibrated would play at its own level,
+    // not matched to the others (texture new calibrates it; texture check says so).
+    if (staff && !texture.loaded.file.levels) {
+      throw std::runtime_error("it has no [levels] table (not calibrated: make it with "
+                               "`sketch-a-scratch texture new`)");
+    }
+    return texture;
+  };
+  const auto fallbacks = options_.texture_fallbacks;
   std::string first_failure;
   for (std::size_t i = 0; i < pending.size(); ++i) {
-    const std::string key = fs::path(options_.texture_paths[i]).parent_path().filename().string();
-    counter_keys_.push_back(key);
+    const std::string& path = options_.texture_paths[i];
+    std::string key = fs::path(path).parent_path().filename().string();
     token_texture_.push_back(-1);
+    std::optional<EngineTexture> texture;
+    std::string loaded_from = path;
     try {
-      EngineTexture texture;
-      texture.key = key;
-      texture.loaded = pending[i].get();
-      texture.material = FindMaterial(texture.loaded.file.material, dirs);
-      if (texture.loaded.bubbles) bubble_texture_ = static_cast<int>(textures_.size());
-      token_texture_.back() = static_cast<int>(textures_.size());
-      texture_keys_.push_back(texture.key);
-      textures_.push_back(std::move(texture));
+      texture = complete(path, pending[i].get(), staff_texture_[i]);
     } catch (const std::exception& error) {
-      texture_failures_.push_back(key + ": " + error.what());
-      if (first_failure.empty()) first_failure = error.what();
-      platform::DefaultLogger().Error(
-          "textures", key + " left out (its token shows the default texture): " + error.what());
+      const std::string fallback = i < fallbacks.size() ? fallbacks[i] : "";
+      const std::string token = "token " + std::to_string(i + 1);
+      if (!fallback.empty()) {
+        // The staff's texture is refused where they look (the journal); the token still shows
+        // a texture, the shipped one of its place.
+        platform::DefaultLogger().Warn(
+            "textures", std::string(staff_texture_[i] ? "staff texture " : "texture ") + path +
+                            " refused: " + error.what() + "; " + token + " shows the shipped " +
+                            fs::path(fallback).parent_path().filename().string() + " instead");
+        try {
+          texture = complete(fallback, surface::LoadTexture(fallback, load), false);
+          key = texture->key;
+          loaded_from = fallback;
+        } catch (const std::exception& also) {
+          texture_failures_.push_back(key + ": " + also.what());
+          if (first_failure.empty()) first_failure = also.what();
+        }
+      } else {
+        texture_failures_.push_back(key + ": " + error.what());
+        if (first_failure.empty()) first_failure = error.what();
+        platform::DefaultLogger().Error(
+            "textures", key + " left out (its token shows the default texture): " + error.what());
+      }
     }
+    counter_keys_.push_back(key);
+    if (!texture) continue;
+    if (texture->loaded.bubbles) bubble_texture_ = static_cast<int>(textures_.size());
+    token_texture_.back() = static_cast<int>(textures_.size());
+    texture_keys_.push_back(texture->key);
+    texture_dirs_.push_back(fs::path(loaded_from).parent_path().string());
+    textures_.push_back(std::move(*texture));
   }
   if (textures_.empty()) {
     throw std::runtime_error("no texture could be loaded (first error: " + first_failure + ")");
@@ -159,6 +215,15 @@ void KioskEngine::LoadTextures() {
       std::find(texture_keys_.begin(), texture_keys_.end(), options_.config.default_texture);
   default_texture_ =
       found == texture_keys_.end() ? 0 : static_cast<int>(found - texture_keys_.begin());
+  if (found == texture_keys_.end()) {
+    // A curator's texture took the default's token: the idle screen shows what that token shows.
+    const auto shipped = KioskTextureNames();
+    const auto place = std::find(shipped.begin(), shipped.end(), options_.config.default_texture);
+    const auto token = static_cast<std::size_t>(place - shipped.begin());
+    if (place != shipped.end() && token < token_texture_.size() && token_texture_[token] >= 0) {
+      default_texture_ = token_texture_[token];
+    }
+  }
 }
 
 KioskEngine::~KioskEngine() {
@@ -193,6 +258,9 @@ bool KioskEngine::NextLanguage(std::int64_t now_ns) {
 
 std::string KioskEngine::TextureName(int texture) const {
   const auto t = static_cast<std::size_t>(std::clamp(texture, 0, int(textures_.size()) - 1));
+  // A curator's texture names itself in the languages it was made for.
+  const auto& names = textures_[t].loaded.file.names;
+  if (const auto own = names.find(cues_.strings().code); own != names.end()) return own->second;
   return cues_.strings().CueText(texture_keys_[t] + "_name", textures_[t].loaded.file.name);
 }
 

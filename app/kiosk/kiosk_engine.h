@@ -64,13 +64,21 @@ struct EngineTexture {
 
 struct KioskEngineOptions {
   KioskConfig config;
-  std::vector<std::string> texture_paths;  // texture.toml files, token order; empty: FindTextures
+  // texture.toml files, token order; empty: the configuration's tokens ([textures], staff
+  // textures first: data_dirs.h ResolveTokenTextures), each with its fallback.
+  std::vector<std::string> texture_paths;
+  // Per texture_paths entry, the texture its token shows when that one does not load ("" or
+  // missing: none, the token then shows the default texture).
+  std::vector<std::string> texture_fallbacks;
   std::string materials_dir;               // searched first (render_command.h search order)
   std::string counters_path;               // empty: counters are not persisted
   std::string staff_settings_path;         // staff panel volume/vibration; empty: not persisted
   std::string cues_dir;                    // empty: FindCuesDir()
   std::string strings_dir;                 // the language tables; empty: FindStringsDir()
   bool spoken_cues = true;                 // false: no cue files loaded (level calibration)
+  // false: the staff's recorded cues (<staff_dir>/cues) are not read, while their textures are
+  // (the scripted headless visit: the same voice on every machine).
+  bool staff_cues = true;
   int screen_width_px = 1920;              // the screen the pen coordinates refer to
   int screen_height_px = 1080;
   double cross_fade_s = 0.45;  // sound cross-fade on a switch (the picture fades alongside)
@@ -260,6 +268,8 @@ class KioskEngine final {
   std::vector<std::string> counter_keys_;  // every texture path's key, token order
   std::vector<int> token_texture_;         // token -> index in textures_, -1 when left out
   std::vector<std::string> texture_failures_;
+  std::vector<bool> staff_texture_;        // per texture path: a staff texture
+  std::vector<std::string> texture_dirs_;  // per loaded texture: its folder (its own cues)
   UsageCounters file_counters_;    // as read at start (counter_keys_ order)
   bool counters_may_save_ = true;  // false: a damaged counters file stays untouched
   platform::DeviceStatusBoard* board_ = nullptr;

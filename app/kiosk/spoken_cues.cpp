@@ -44,8 +44,11 @@ const char* CueKey(Cue cue) {
 
 SpokenCues::SpokenCues(const KioskConfig& config, const std::string& strings_dir,
                        std::string cues_dir, bool spoken_cues,
-                       std::vector<std::string> texture_keys)
-    : cues_dir_(std::move(cues_dir)), texture_keys_(std::move(texture_keys)) {
+                       std::vector<std::string> texture_keys,
+                       std::vector<std::string> texture_dirs)
+    : cues_dir_(std::move(cues_dir)),
+      texture_keys_(std::move(texture_keys)),
+      texture_dirs_(std::move(texture_dirs)) {
   LoadLanguages(config, strings_dir);
   LoadCues(config, spoken_cues);
 }
@@ -109,6 +112,32 @@ void SpokenCues::LoadCues(const KioskConfig& config, bool spoken_cues) {
     }
     staff = LoadStaffCues((fs::path(config.staff_dir) / kStaffCuesFolder).string(), codes, keys,
                           fs_hz, platform::DefaultLogger());
+  }
+  // A curator's texture brings its own name and description cues; the staff's recordings of
+  // the same keys (above) come first.
+  if (spoken_cues) {
+    std::vector<std::string> codes;
+    for (const auto& language : languages_) codes.push_back(language.table.code);
+    for (std::size_t t = 0; t < texture_dirs_.size() && t < texture_keys_.size(); ++t) {
+      const fs::path own = fs::path(texture_dirs_[t]) / kStaffCuesFolder;
+      std::error_code error;
+      if (texture_dirs_[t].empty() || !fs::is_directory(own, error)) continue;
+      const std::string& key = texture_keys_[t];
+      // Its refusals reach the journal; the per-language counts would only repeat what
+      // `texture check` said when it was installed.
+      platform::Logger quiet;
+      quiet.SetEchoToStderr(false);
+      auto found = LoadStaffCues(own.string(), codes, {key + "_name", key + "_description"}, fs_hz,
+                                 quiet);
+      for (const auto& line : quiet.Recent()) {
+        if (line.level >= platform::LogLevel::kWarn) {
+          platform::DefaultLogger().Warn(line.component, line.message);
+        }
+      }
+      for (auto& [code, cues] : found) {
+        for (auto& [cue_key, cue] : cues) staff[code].emplace(cue_key, std::move(cue));
+      }
+    }
   }
   const LanguageTable* table = nullptr;  // the language being loaded
   const auto load = [&](const fs::path& dir, const std::string& key) -> int {

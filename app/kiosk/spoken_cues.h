@@ -39,8 +39,12 @@ class SpokenCues {
   SpokenCues() = default;  // no languages: only to be assigned a loaded one
   // `cues_dir` "": no cue files (the test signals are still made). `spoken_cues` false: nobody
   // expects cues (no warning about missing ones). `texture_keys`: the loaded textures, in order.
+  // `texture_dirs`: each texture's folder (or none): a curator's texture carries its own name
+  // and description cues in <folder>/cues/<language>/<key>_name.wav (read as staff cues are, and
+  // used unless <staff_dir>/cues has one for that key).
   SpokenCues(const KioskConfig& config, const std::string& strings_dir, std::string cues_dir,
-             bool spoken_cues, std::vector<std::string> texture_keys);
+             bool spoken_cues, std::vector<std::string> texture_keys,
+             std::vector<std::string> texture_dirs = {});
 
   // The clips' samples for the player (moved out: call once).
   std::vector<player::PlayerClip> TakeClipSamples();
@@ -94,6 +98,7 @@ class SpokenCues {
 
   std::string cues_dir_;
   std::vector<std::string> texture_keys_;
+  std::vector<std::string> texture_dirs_;
   std::vector<Clip> clips_;
   std::vector<player::PlayerClip> clip_samples_;
   std::vector<LanguageAssets> languages_;  // [0]: the configured language

@@ -150,6 +150,16 @@ StrokeLevelTable ParseLevels(const Checker& check, const toml::table& table) {
   return levels;
 }
 
+// A text the kiosk speaks as a description: one sentence, short enough to be heard out.
+void CheckSentence(const Checker& check, const std::string& d, const toml::source_region& where,
+                   const std::string& key) {
+  if (d.size() > 240) check.Fail(where, key, "longer than 240 characters");
+  const auto stop = d.find_first_of(".!?");
+  if (stop == std::string::npos || stop != d.size() - 1) {
+    check.Fail(where, key, "must be exactly one sentence ending in '.', '!' or '?'");
+  }
+}
+
 }  // namespace
 
 TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
@@ -158,37 +168,66 @@ TextureFile ParseTextureFile(const std::string& text, const std::string& path) {
     root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw LoadError(path + ":" + std::to_string(e.source().begin.line) + ":" +
-                    std::to_string(e.source().begin.column) + ": " + std::string(e.description()));
+                    std::to_string(e.source().begin.column) + ": syntax: " +
+                    std::string(e.description()));
   }
   const Checker check(path);
   const toml::source_region top{{1, 1}, {1, 1}, nullptr};
   check.OnlyKeys(root, "",
                  {"name", "description", "material", "picture", "height_map", "height_scale_mm",
-                  "relief_mm", "gains", "levels", "probe", "bubbles"});
+                  "relief_mm", "gains", "levels", "probe", "bubbles", "relief_from", "scan",
+                  "names", "descriptions"});
   TextureFile t;
   t.name = check.String(root, top, "", "name");
   t.description = check.String(root, top, "", "description");
-  {
-    const auto& d = t.description;
-    const auto where = root.get("description")->source();
-    if (d.size() > 240) check.Fail(where, "description", "longer than 240 characters");
-    const auto stop = d.find_first_of(".!?");
-    if (stop == std::string::npos || stop != d.size() - 1) {
-      check.Fail(where, "description", "must be exactly one sentence ending in '.', '!' or '?'");
+  CheckSentence(check, t.description, root.get("description")->source(), "description");
+  // Other languages' names and descriptions: a table of two-letter codes; which codes the kiosk
+  // speaks is the kiosk's business (texture check says which are missing or unknown).
+  for (const char* table_key : {"names", "descriptions"}) {
+    const toml::node* node = root.get(table_key);
+    if (node == nullptr) continue;
+    if (!node->is_table()) {
+      check.Fail(node->source(), table_key, std::string("must be a table [") + table_key + "]");
+    }
+    const bool sentences = std::string_view(table_key) == "descriptions";
+    auto& into = sentences ? t.descriptions : t.names;
+    for (const auto& [code, value] : *node->as_table()) {
+      const std::string key = std::string(table_key) + "." + std::string(code.str());
+      const bool code_ok =
+          code.str().size() == 2 && std::all_of(code.str().begin(), code.str().end(),
+                                                 [](char c) { return c >= 'a' && c <= 'z'; });
+      if (!code_ok) check.Fail(code.source(), key, "not a language code (two lower-case letters)");
+      const auto entry = value.value<std::string>();
+      if (!value.is_string() || !entry) check.Fail(value.source(), key, "must be a string");
+      if (entry->empty()) check.Fail(value.source(), key, "must not be empty");
+      if (sentences) CheckSentence(check, *entry, value.source(), key);
+      into[std::string(code.str())] = *entry;
     }
   }
   t.material = check.String(root, top, "", "material");
-  static constexpr std::array<std::string_view, 4> kMaterials = {"bubble_wrap", "glass", "wood",
-                                                                 "dry_soil"};
-  if (std::find(kMaterials.begin(), kMaterials.end(), t.material) == kMaterials.end()) {
+  // A material file's name (files/material_file.h finds it): letters, digits and '_' only, so it
+  // can never climb out of the materials folder.
+  if (t.material.size() > 64 ||
+      !std::all_of(t.material.begin(), t.material.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+      })) {
     check.Fail(root.get("material")->source(), "material",
-               "'" + t.material + "' is not one of bubble_wrap, glass, wood, dry_soil");
+               "'" + t.material + "' is no material name (lower-case letters, digits and _)");
   }
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   t.picture_path = (folder / check.String(root, top, "", "picture")).string();
   t.height_map_path = (folder / check.String(root, top, "", "height_map")).string();
   t.height_scale_mm = check.Number(root, top, "", "height_scale_mm", 0.001, 50.0);
   t.relief_mm = check.Number(root, top, "", "relief_mm", 0.0, 10.0);
+  if (root.contains("relief_from")) {
+    const std::string from = check.String(root, top, "", "relief_from");
+    if (from != "edges" && from != "brightness") {
+      check.Fail(root.get("relief_from")->source(), "relief_from",
+                 "'" + from + "' is not edges or brightness");
+    }
+    t.relief_from_brightness = from == "brightness";
+  }
+  if (root.contains("scan")) t.scan_path = (folder / check.String(root, top, "", "scan")).string();
 
   const toml::table& gains = check.Table(root, top, "gains");
   check.OnlyKeys(gains, "gains.",

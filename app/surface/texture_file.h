@@ -21,10 +21,18 @@
 //   [probe]  width_mm = 0.5   penetration_mm = 0.02   style = "scrape"   # scrape | rub | roll
 //   [bubbles]  pop_force_n = 3.0  layout = "hexagonal"  pitch_px  radius_px  origin_x_px
 //   origin_y_px
+// A curator's texture (`sketch-a-scratch texture new`) may also hold:
+//   relief_from = "edges"                # edges (default: the paper's gray-level change) |
+//                                        # brightness (the picture's luminance is the height: scans)
+//   scan = "scan.csv"                    # the scan it was made from (checked, not read by the kiosk)
+//   [names]  de = "..."  fr = "..."      # the name and the description in other languages
+//   [descriptions]  de = "..."           # (two lower-case letters; English is name/description)
+// and its material may be any material file's name (the texture's folder is searched first).
 //
 // Every key is checked: unknown keys, missing keys, wrong types and out-of-range values are
 // LoadErrors of the form "<file>:<line>:<col>: <key>: <why>".
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -91,7 +99,7 @@ struct BubbleSettings {
 struct TextureFile {
   std::string name;
   std::string description;   // one sentence, spoken by the kiosk
-  std::string material;      // bubble_wrap | glass | wood | dry_soil
+  std::string material;      // a material file's name: bubble_wrap | glass | wood | dry_soil | ...
   std::string picture_path;  // absolute or relative to the working directory (resolved)
   std::string height_map_path;
   double height_scale_mm = 1.0;
@@ -100,6 +108,10 @@ struct TextureFile {
   std::optional<StrokeLevelTable> levels;  // absent: no per-stroke matching for this texture
   TextureProbeDefaults probe;
   std::optional<BubbleSettings> bubbles;  // bubble wrap only
+  bool relief_from_brightness = false;    // relief_from = "brightness"
+  std::string scan_path;                  // "" when not made from a scan (resolved)
+  std::map<std::string, std::string> names;         // language code -> name, besides English
+  std::map<std::string, std::string> descriptions;  // language code -> one sentence
 };
 
 // Parses and validates; relative file names are resolved against the texture file's folder.

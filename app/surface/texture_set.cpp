@@ -12,6 +12,9 @@ LoadedTexture LoadTexture(const std::string& path, const TextureLoadOptions& opt
   t.file = LoadTextureFile(path);
   ReliefOptions relief;
   relief.relief_mm = t.file.relief_mm;
+  // A scan's picture is its heights as brightness (texture new --scan): read as such, not as
+  // the edges of a photograph.
+  if (t.file.relief_from_brightness) relief.source = ReliefSource::kLuminance;
   if (options.pixel_pitch_mm > 0.0) relief.pixel_pitch_mm = options.pixel_pitch_mm;
   HeightField field =
       SurfaceFromImage(LoadGrayImage(t.file.picture_path, options.limits), relief).field;

@@ -32,7 +32,7 @@ expect() {  # expect <exit code> <text in stdout+stderr> <args...>
     echo "ok: sketch-a-scratch $* -> $rc (${ms} ms)"
   fi
 }
-for command in "" demo kiosk render impact; do
+for command in "" demo kiosk render impact texture "texture new" "texture check" "texture preview" "texture install"; do
   # shellcheck disable=SC2086
   expect 0 "--help" $command --help
 done
@@ -42,6 +42,9 @@ expect 2 "--state-dir" --kiosk --state-dir
 expect 2 "--fullscreen" kiosk --fullscreen
 expect 2 "--out" demo --out
 expect 2 "bogus" bogus
+expect 2 "--token" texture install x --token 9
+expect 2 "--photo" texture new x --photo
+expect 1 "not a folder" texture check /nonexistent/folder
 expect 2 "--out" --out
 expect 2 "--fs" render --out x.wav --fs 1e30
 expect 2 "--mass" impact --mass nan

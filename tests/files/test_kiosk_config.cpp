@@ -359,3 +359,17 @@ TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is b
   CHECK_THAT(error_for("[staff]\nchord_hold_s = 60\n"),
              Catch::Contains("staff.toml:2: staff.chord_hold_s: 60 is out of range"));
 }
+
+TEST_CASE("kiosk.toml: [textures] names each token's texture; a name that could leave the textures folder is an error at its line",
+          "[kiosk]") {
+  const KioskConfig config =
+      ParseKioskConfig("[textures]\ntoken_3 = \"river_pebbles\"\n", "k.toml");
+  CHECK(config.token_textures ==
+        std::vector<std::string>{"bubble_wrap", "broken_glass", "river_pebbles", "cracked_ground"});
+  CHECK_THROWS_WITH(ParseKioskConfig("[textures]\n\ntoken_2 = \"../etc\"\n", "k.toml"),
+                    Catch::Contains("k.toml:3: textures.token_2:"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[textures]\ntoken_5 = \"wood\"\n", "k.toml"),
+                    Catch::Contains("k.toml:2: textures.token_5: unknown key"));
+  CHECK(LoadKioskConfig(std::string(sas::kSourceDir) + "/install/kiosk.toml").token_textures ==
+        KioskConfig{}.token_textures);
+}

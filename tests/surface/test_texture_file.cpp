@@ -107,8 +107,29 @@ TEST_CASE("texture file mistakes are reported with file, line and key", "[surfac
   CHECK_THROWS_WITH(
       ParseTextureFile(Replace(kValid, "relief_mm = 0.2", "relief_mm = \"high\""), "t.toml"),
       Catch::Contains("t.toml:7") && Catch::Contains("must be a number"));
-  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"wood\"", "\"cheese\""), "t.toml"),
-                    Catch::Contains("t.toml:3") && Catch::Contains("cheese"));
+  // Any material file's name (a curator's texture may bring its own); never a path.
+  CHECK(ParseTextureFile(Replace(kValid, "\"wood\"", "\"cheese\""), "t.toml").material ==
+        "cheese");
+  CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"wood\"", "\"../wood\""), "t.toml"),
+                    Catch::Contains("t.toml:3") && Catch::Contains("no material name"));
+  // A curator's texture: names and descriptions per language, a relief from brightness.
+  {
+    const auto t = ParseTextureFile(
+        Replace(kValid, "relief_mm = 0.2", "relief_mm = 0.2\nrelief_from = \"brightness\"") +
+            "[names]\nde = \"Test\"\n[descriptions]\nde = \"Ein Test.\"\n",
+        "t.toml");
+    CHECK(t.relief_from_brightness);
+    CHECK(t.names.at("de") == "Test");
+    CHECK(t.descriptions.at("de") == "Ein Test.");
+  }
+  CHECK_THROWS_WITH(ParseTextureFile(kValid + "[names]\nDeutsch = \"Test\"\n", "t.toml"),
+                    Catch::Contains("names.Deutsch") && Catch::Contains("language code"));
+  CHECK_THROWS_WITH(ParseTextureFile(kValid + "[descriptions]\nde = \"Eins. Zwei.\"\n", "t.toml"),
+                    Catch::Contains("descriptions.de") && Catch::Contains("one sentence"));
+  CHECK_THROWS_WITH(
+      ParseTextureFile(Replace(kValid, "relief_mm = 0.2", "relief_mm = 0.2\nrelief_from = \"x\""),
+                       "t.toml"),
+      Catch::Contains("t.toml:8") && Catch::Contains("relief_from"));
   CHECK_THROWS_WITH(ParseTextureFile(Replace(kValid, "\"rub\"", "\"poke\""), "t.toml"),
                     Catch::Contains("probe.style"));
   // The spoken description is exactly one sentence.
