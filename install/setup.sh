@@ -59,9 +59,14 @@ fi
 # reports keep file and line, and each file compiles 20-30 % faster with GCC 12 (the normal build
 # went from 3 min 26 s to 2 min 52 s on the 2-core machine). A hand-configured build dir keeps
 # CMake's defaults (full -g, for a debugger).
+# Ninja rather than make: it starts a target's files as soon as their own inputs are ready, not
+# when every library the target links is linked, which keeps both cores busy through the test
+# executables. A folder configured earlier keeps its generator (CMake cannot change it in place).
 build() {  # build <dir> <cmake args...>
-  local dir="$1"; shift
-  cmake -S "$repo" -B "$repo/$dir" -DCMAKE_BUILD_TYPE="${SAS_BUILD_TYPE:-RelWithDebInfo}" \
+  local dir="$1" generator=()
+  shift
+  [ -f "$repo/$dir/CMakeCache.txt" ] || generator=(-G Ninja)
+  cmake -S "$repo" -B "$repo/$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE="${SAS_BUILD_TYPE:-RelWithDebInfo}" \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DCMAKE_C_FLAGS_DEBUG=-g1 -DCMAKE_CXX_FLAGS_DEBUG=-g1 "$@" >/dev/null
   cmake --build "$repo/$dir" -j "$jobs"
