@@ -78,6 +78,9 @@ struct MaterialResult {
   std::vector<kiosk::StrokeReference> reference;
   std::vector<SchemeResult> schemes;
   int best = -1;
+  // Where no policy met the budget: what the built-in policy (which the material then keeps)
+  // misses.
+  std::string builtin_fails;
 };
 
 std::vector<StrokeBudgetFigures> Compare(const synth::MaterialParams& params,
@@ -304,6 +307,44 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
      << kiosk::kReferenceOversample
      << " sub-steps on every contact sample (the fine-step reference). Strokes: scrape (0.3 mm), "
         "rub (4 mm) and roll, each at 40 and 200 mm/s, 0.9 N, on the built-in grating.\n\n";
+  // Why these figures: what an error of the budget's size does to what the visitor hears and
+  // feels, computed from the budget's own constants and the measured errors.
+  double worst_chosen = 0.0;
+  for (const auto& m : results) {
+    if (m.best >= 0) {
+      worst_chosen = std::max(worst_chosen,
+                              m.schemes[static_cast<std::size_t>(m.best)].impact.worst_relative);
+    }
+  }
+  const double eps = kiosk::kRestitutionBudget;
+  char why[2400];
+  std::snprintf(
+      why, sizeof why,
+      "## Why this budget
+
+"
+      "- An impact's sound and vibration are the resonator's answer to the impulse the contact "
+      "gives it, (1 + e) m v for a rebound of restitution e. A relative error ε in the rebound "
+      "speed moves that impulse by ε e / (1 + e) < ε / 2, so the level of the click by at most "
+      "20 log10(1 + ε/2): %.1e dB at the budget's ε = %.0e, %.1e dB at the worst error the chosen "
+      "policies make (%.1e). The smallest level change listeners detect in a broadband sound is "
+      "about 0.4-0.5 dB (Miller, \"Sensitivity to changes in the intensity of white noise\", "
+      "JASA 19, 1947); the hand's, for vibration, 1-2 dB (Gescheider, Bolanowski, Verrillo, "
+      "Arpajian & Ryan, JASA 87, 1990). The restitution budget is the house figure (DESIGN.md "
+      "section 4) and %.0f times inside the ear's step.
+"
+      "- A stroke's level error of %.1f dB is the ear's step for broadband sound (Miller 1947) "
+      "and a third to a quarter of the hand's; the kiosk matches its textures' levels within "
+      "1 dB (calibration/texture_levels.h), so a contact error within the budget is half what "
+      "the level matching already allows. The level is what is compared, not the waveform or the "
+      "spectrum's shape: the spectrum of a chaotic stroke is not reproducible (its band energies "
+      "move by tens of %% on a 1e-12 change, docs/contact-bench.md), and a level that is not the "
+      "same within the ear's step would be the audible part.
+
+",
+      20.0 * std::log10(1.0 + eps / 2.0), eps, 20.0 * std::log10(1.0 + worst_chosen / 2.0),
+      worst_chosen, 0.45 / (20.0 * std::log10(1.0 + eps / 2.0)), kiosk::kLevelBudgetDb);
+  md << why;
   md << "Chaos floor: the reference against itself with one modal mass changed by ±1e-12 "
         "(a stroke that sticks and slips, or flies over the ridges and lands on each, is chaotic; "
         "a level difference within this floor is not the scheme's, so a stroke meets the budget "
@@ -359,7 +400,11 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
   md << "---|\n";
   for (const auto& m : results) {
     if (m.best < 0) {
-      md << "| " << m.material.name << " | none met the budget |\n";
+      md << "| " << m.material.name << " | none met the budget: the built-in policy ("
+         << SchemeName(synth::kDefaultContactScheme) << ", "
+         << G17(synth::TargetContactSamples(synth::kDefaultContactScheme)) << " / "
+         << synth::kSustainedContactSubsteps << ") stays, and misses it: "
+         << (m.builtin_fails.empty() ? "nothing" : m.builtin_fails) << " |\n";
       continue;
     }
     const auto& s = m.schemes[static_cast<std::size_t>(m.best)];
@@ -397,6 +442,11 @@ int RunChoose(const ChooseOptions& options) {
         best_ns = s.ns_per_sample;
       }
       std::fflush(stdout);
+    }
+    if (m.best < 0) {
+      const auto params = kiosk::WithPolicy(m.material.params, {synth::kDefaultContactScheme, 0, 0});
+      const auto all = AllStrokes();
+      m.builtin_fails = FailText(Compare(params, m.reference, all), m.reference, all);
     }
     results.push_back(std::move(m));
   }
