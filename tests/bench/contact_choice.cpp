@@ -320,9 +320,7 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
   char why[2400];
   std::snprintf(
       why, sizeof why,
-      "## Why this budget
-
-"
+      "## Why this budget\n\n"
       "- An impact's sound and vibration are the resonator's answer to the impulse the contact "
       "gives it, (1 + e) m v for a rebound of restitution e. A relative error ε in the rebound "
       "speed moves that impulse by ε e / (1 + e) < ε / 2, so the level of the click by at most "
@@ -330,18 +328,15 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
       "policies make (%.1e). The smallest level change listeners detect in a broadband sound is "
       "about 0.4-0.5 dB (Miller, \"Sensitivity to changes in the intensity of white noise\", "
       "JASA 19, 1947); the hand's, for vibration, 1-2 dB (Gescheider, Bolanowski, Verrillo, "
-      "Arpajian & Ryan, JASA 87, 1990). The restitution budget is the house figure (DESIGN.md "
-      "section 4) and %.0f times inside the ear's step.
-"
+      "Arpajian & Ryan, JASA 87, 1990). The restitution budget is the project's figure for impact "
+      "restitution and %.0f times inside the ear's step.\n"
       "- A stroke's level error of %.1f dB is the ear's step for broadband sound (Miller 1947) "
       "and a third to a quarter of the hand's; the kiosk matches its textures' levels within "
       "1 dB (calibration/texture_levels.h), so a contact error within the budget is half what "
       "the level matching already allows. The level is what is compared, not the waveform or the "
       "spectrum's shape: the spectrum of a chaotic stroke is not reproducible (its band energies "
       "move by tens of %% on a 1e-12 change, docs/contact-bench.md), and a level that is not the "
-      "same within the ear's step would be the audible part.
-
-",
+      "same within the ear's step would be the audible part.\n\n",
       20.0 * std::log10(1.0 + eps / 2.0), eps, 20.0 * std::log10(1.0 + worst_chosen / 2.0),
       worst_chosen, 0.45 / (20.0 * std::log10(1.0 + eps / 2.0)), kiosk::kLevelBudgetDb);
   md << why;
