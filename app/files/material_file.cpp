@@ -3,6 +3,7 @@
 // key specs per TOML table, so the accepted keys, their types and ranges are written once.
 #include "files/material_file.h"
 
+#include "files/contact_choice.h"
 #include "files/contact_scheme_names.h"
 #include "sas/version.h"
 
@@ -90,8 +91,11 @@ Setter<synth::ImpactParams> Scheme() {
       throw MaterialError(where + "expected a string (one of " + choices + ")");
     }
     const std::string value = *node.value<std::string>();
+    // The benchmark's choice is applied once the probe and the impact are known (ParseMaterial).
+    if (value == kBenchmarkSchemeName) return;
     if (!ParseContactScheme(value, &impact.scheme)) {
-      throw MaterialError(where + "unknown scheme \"" + value + "\" (one of " + choices + ")");
+      throw MaterialError(where + "unknown scheme \"" + value + "\" (one of " + choices + ", " +
+                          std::string(kBenchmarkSchemeName) + ")");
     }
   };
 }
@@ -313,6 +317,10 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
              source_name);
   ApplyTable(RequireTable(root, "impact", source_name), "impact", ImpactKeys(),
              material.params.impact, source_name);
+  if (const auto* scheme = RequireTable(root, "impact", source_name).get("scheme");
+      scheme != nullptr && scheme->value<std::string>() == std::string(kBenchmarkSchemeName)) {
+    material.contact_from_benchmark = ApplyContactChoice(name, material.params);
+  }
   const toml::table& friction = RequireTable(root, "friction", source_name);
   ApplyTable(friction, "friction", FrictionKeys(), material.params.friction, source_name);
   // Static friction below dynamic friction has no Stribeck dip and breaks z_ss's meaning.

@@ -28,6 +28,9 @@ struct Material {
   std::string name;         // the file name without ".toml"
   std::string description;  // one line for people (staff panel, --help, README)
   synth::MaterialParams params;
+  // The file asked for the benchmark's contact choice and the table has this material's row
+  // (files/contact_choice.h).
+  bool contact_from_benchmark = false;
 };
 
 // Highest mode frequency a material file may hold: 0.45 of the kiosk's 48 kHz rate. The synth drops

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <optional>
 
+#include "files/contact_scheme_names.h"
 #include "sas/version.h"
+#include "synth/contact.h"
 
 namespace sas::kiosk {
 namespace {
@@ -130,6 +132,20 @@ std::string Db(double value) {
 }
 
 // The configuration's key values in use (whichever copy they came from).
+// What each texture's contact runs: the scheme and the adaptive sub-steps' range at 48 kHz,
+// chosen by contact_bench from the error budget (files/contact_choice.h) or built in.
+std::string ContactLine(const KioskEngine& engine) {
+  std::string text = "Contact (contact_bench's choice, docs/contact-budget.md):";
+  for (const auto& t : engine.textures()) {
+    const auto& p = t.material.params;
+    const int most = synth::ChooseContactOversample(p.impact, p.probe.mass_kg, 48000.0);
+    text += " " + t.key + " " + ContactSchemeName(p.impact.scheme) + " x1-" +
+            std::to_string(most) + (t.material.contact_from_benchmark ? ";" : " (built-in);");
+  }
+  if (text.back() == ';') text.pop_back();
+  return text;
+}
+
 std::string InUseLine(const KioskConfig& c) {
   std::string languages;
   for (const auto& code : c.visitor_languages) languages += (languages.empty() ? "" : " ") + code;
@@ -193,6 +209,7 @@ std::vector<StaffPanelLine> StaffPanelLines(const StaffPanelInputs& in) {
   lines.push_back({std::string("Sketch-a-Scratch ") + kVersion +
                        " - staff panel (the staff chord again closes it)",
                    true});
+  lines.push_back({ContactLine(engine)});
   bool config_ok = true;
   for (const auto& status : in.board->All()) {
     // The configuration has a line of its own below (which copy runs, and its values).

@@ -980,8 +980,20 @@ int ChooseContactOversample(const ImpactParams& impact, double probe_mass_kg,
       RigidWallContactTime(probe_mass_kg, impact.stiffness, impact.shape_alpha, 1.0) *
       sample_rate_hz;
   if (!(samples > 0.0)) return kMaxOversample;
-  const double n = std::ceil(TargetContactSamples(impact.scheme) / samples);
+  // A policy that names its sustained count gets it even where impacts need fewer (a material
+  // without one keeps the count it was tuned with).
+  const double n = std::max(std::ceil(ContactTargetSamples(impact) / samples),
+                            static_cast<double>(impact.sustained_substeps));
   return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(kMaxOversample)));
+}
+
+double ContactTargetSamples(const ImpactParams& impact) {
+  return impact.target_contact_samples > 0.0 ? impact.target_contact_samples
+                                             : TargetContactSamples(impact.scheme);
+}
+
+int SustainedContactSubsteps(const ImpactParams& impact) {
+  return impact.sustained_substeps > 0 ? impact.sustained_substeps : kSustainedContactSubsteps;
 }
 
 int ContactSubstepsForSpeed(const ImpactParams& impact, double probe_mass_kg, double sample_rate_hz,
@@ -990,7 +1002,7 @@ int ContactSubstepsForSpeed(const ImpactParams& impact, double probe_mass_kg, do
   // Sub-steps per contact for the 1e-4 rule: TargetContactSamples carries a factor 1/0.8 so that
   // a fixed count covers 3 m/s; here the actual speed is known.
   const double relax = std::max(1.0, kAbsoluteSpeedFloor / v_mps);  // tolerance / 1e-4
-  const double base = 0.8 * TargetContactSamples(impact.scheme);
+  const double base = 0.8 * ContactTargetSamples(impact);
   const double required = impact.scheme == ContactScheme::kExplicitPassive
                               ? base / relax              // first order
                               : base / std::sqrt(relax);  // second order
@@ -1029,15 +1041,24 @@ ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, dou
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
                                         int oversample, double onset_phase,
                                         const std::function<bool()>& keep_going) {
-  // A value outside the enumeration runs the default; the result says which scheme ran.
-  const ContactScheme used = IsContactSchemeImplemented(scheme) ? scheme : kDefaultContactScheme;
   ImpactParams params;
   params.enabled = true;
-  params.scheme = used;
+  params.scheme = scheme;
   params.stiffness = k;
   params.dissipation_s_per_m = mu;
   params.shape_alpha = alpha;
   params.oversample = oversample;
+  return SimulateRigidWallImpact(params, mass_kg, v_in, sample_rate_hz, onset_phase, keep_going);
+}
+
+ImpactRunResult SimulateRigidWallImpact(ImpactParams params, double mass_kg, double v_in,
+                                        double sample_rate_hz, double onset_phase,
+                                        const std::function<bool()>& keep_going) {
+  // A value outside the enumeration runs the default; the result says which scheme ran.
+  const ContactScheme used =
+      IsContactSchemeImplemented(params.scheme) ? params.scheme : kDefaultContactScheme;
+  params.enabled = true;
+  params.scheme = used;
   ContactKernelConfig config;
   config.scheme = used;
   config.impact.Set(params);

@@ -315,6 +315,9 @@ double RigidWallContactTime(double mass_kg, double k, double alpha, double v_in)
 // forces to follow the modes that squeal (up to 0.45 fs); with 1 or 2 sub-steps the held forces
 // lag those modes by a large part of a period and a squealing plate comes out quieter.
 inline constexpr int kSustainedContactSubsteps = 4;
+// The policy a material's ImpactParams asks for (its own figures where given, else the scheme's).
+double ContactTargetSamples(const ImpactParams& impact);
+int SustainedContactSubsteps(const ImpactParams& impact);
 inline constexpr double kRestitutionTolerance = 1e-4;
 inline constexpr double kAbsoluteSpeedFloor = 0.1;  // m/s
 // Sub-steps per sample an impact at v_mps needs (1 .. kMaxOversample).
@@ -327,8 +330,9 @@ double MaxSpeedForSubsteps(const ImpactParams& impact, double probe_mass_kg, dou
 // f >= 0 (-α/(α+1) f x_eq, x_eq = (f/k)^(1/α)); 0 without push.
 double EquilibriumEnergy(const ImpactModel& impact, double push_n);
 // Contact sub-steps per sample so that an impact at v_ref = 1 m/s of the probe mass against a
-// rigid body lasts at least TargetContactSamples(impact.scheme) sub-steps (capped at
-// kMaxOversample); impact.oversample > 0 is taken as given.
+// rigid body lasts at least ContactTargetSamples(impact) sub-steps (capped at kMaxOversample), and
+// never fewer than SustainedContactSubsteps(impact), so that a pressed contact can have them;
+// impact.oversample > 0 is taken as given.
 int ChooseContactOversample(const ImpactParams& impact, double probe_mass_kg,
                             double sample_rate_hz);
 
@@ -350,6 +354,11 @@ struct ImpactRunResult {
 ImpactRunResult SimulateRigidWallImpact(double mass_kg, double k, double mu, double alpha,
                                         double v_in, double sample_rate_hz, ContactScheme scheme,
                                         int oversample, double onset_phase,
+                                        const std::function<bool()>& keep_going = {});
+// The same for a material's impact parameters as given (scheme, oversample and the automatic
+// setting's policy; `enabled` is taken as true).
+ImpactRunResult SimulateRigidWallImpact(ImpactParams params, double mass_kg, double v_in,
+                                        double sample_rate_hz, double onset_phase,
                                         const std::function<bool()>& keep_going = {});
 
 }  // namespace sas::synth

@@ -60,7 +60,7 @@ struct ContactKernelConfig {
   // speeds up to sqrt(level_speed_sq[L]) (ContactSubstepsForSpeed); the finest level, any speed.
   bool adaptive = false;
   std::array<double, kMaxSubstepLevels> level_speed_sq{};
-  // The finest level a sustained contact may use (kSustainedContactSubsteps sub-steps at most).
+  // The finest level a sustained contact may use (SustainedContactSubsteps sub-steps at most).
   int sustained_level = kMaxSubstepLevels - 1;
 
   double rate_hz = 48000.0;       // 1 / period_s
@@ -87,7 +87,8 @@ struct ContactKernelConfig {
     }
     sustained_level = 0;
     for (int level = 0; level < modes.level_count; ++level) {
-      if (modes.level_substeps[static_cast<std::size_t>(level)] <= kSustainedContactSubsteps) {
+      if (modes.level_substeps[static_cast<std::size_t>(level)] <=
+          SustainedContactSubsteps(params)) {
         sustained_level = level;
       }
     }

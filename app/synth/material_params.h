@@ -59,6 +59,12 @@ struct ImpactParams {
   // Contact sub-steps per sample (1, 2, 4, 8, 16, ... any whole number); 0 = automatic: enough
   // for the scheme's accuracy target at this material's samples per contact (see contact.h).
   int oversample = 0;
+  // The automatic setting's sub-step policy, chosen per material from the benchmark
+  // (contact_bench --choose: the cheapest that meets the kiosk's error budget); 0 = the scheme's
+  // built-in figure. Sub-steps an impact at 1 m/s gets per contact (TargetContactSamples), and the
+  // most a pressed contact keeps (kSustainedContactSubsteps); see synth/contact.h.
+  double target_contact_samples = 0.0;
+  int sustained_substeps = 0;
 };
 
 // Elasto-plastic bristle friction: f = σ0 z + σ1 ż + σ2 v + σ3 w.

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "files/contact_choice.h"
 #include "files/kiosk_config.h"
 #include "kiosk/data_dirs.h"
 #include "kiosk/device_configs.h"
@@ -169,6 +170,9 @@ struct RenderCli {
                     "haptic output gain, dB (default 0)");
     app.add_flag("--normalize", options.normalize,
                  "scale each channel to a -1 dBFS peak after rendering");
+    app.add_flag("--verbose", options.verbose,
+                 "also print the contact scheme and sub-steps the material runs (chosen by "
+                 "contact_bench from the error budget, docs/contact-budget.md)");
   }
 
   // After a successful parse: the choices CLI11 checked, and the cross-option rule.
@@ -227,6 +231,7 @@ void RenderBareScene(const RenderOptions& options, const Gesture& gesture,
   if (material_name.empty()) material_name = "wood";
   const Material material = FindMaterial(material_name, MaterialSearchDirs(options.materials_dir));
   summary.material_file = material.name;
+  summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark);
   const surface::HeightField field = LoadProfile(profile);
   const double fs_hz = options.sample_rate_hz;
 
@@ -376,8 +381,10 @@ void RenderThroughKiosk(const RenderOptions& options, const Gesture& gesture,
                 summary);
     summary.material_file = kVoiceMaterial;
   } else {
-    summary.material_file =
-        engine.textures()[static_cast<std::size_t>(engine.default_texture())].material.name;
+    const auto& material =
+        engine.textures()[static_cast<std::size_t>(engine.default_texture())].material;
+    summary.material_file = material.name;
+    summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark);
   }
 
   // A gesture off the screen is not an error (the kiosk clamps the pen to the picture) but worth
@@ -533,6 +540,10 @@ int RunRenderCommand(const std::vector<std::string>& args, std::FILE* out, std::
       std::fprintf(err, "sketch-a-scratch render: warning: %s\n", warning.c_str());
     }
     std::fprintf(out, "%s\n", FormatSummary(options, summary).c_str());
+    if (options.verbose && !summary.contact_policy.empty()) {
+      std::fprintf(out, "contact: %s: %s\n", summary.material_file.c_str(),
+                   summary.contact_policy.c_str());
+    }
     return kExitOk;
   } catch (const std::exception& error) {
     std::fprintf(err, "sketch-a-scratch render: error: %s\n", error.what());

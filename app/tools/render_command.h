@@ -65,6 +65,7 @@ struct RenderOptions {
   // renders; the synth's own scale is 1 m/s pickup velocity = full scale).
   bool normalize = false;
   int block_frames = 256;  // the bare scene's block size (output does not depend on it)
+  bool verbose = false;    // also print the contact scheme and sub-steps the material runs
 
   // Whether the kiosk engine plays the render (texture without true_height, or a voice).
   bool ThroughKiosk() const { return !voice_path.empty() || (!texture.empty() && !true_height); }
@@ -77,6 +78,8 @@ struct ChannelStats {
 
 struct RenderSummary {
   std::string material_file;
+  // The contact scheme and sub-step policy the material runs (files/contact_choice.h).
+  std::string contact_policy;
   double duration_s = 0.0;
   double gesture_s = 0.0;
   ChannelStats channels[2];

@@ -49,6 +49,7 @@
 #include "../support/fft.h"
 #include "../synth/stress_sets.h"
 #include "contact_bench_common.h"
+#include "contact_choice.h"
 #include "explicit_front.h"
 #include "kiosk/gesture.h"
 #include "synth/contact.h"
@@ -83,6 +84,9 @@ struct Options {
   long stress = 0;
   std::string readme;               // --update-readme: replace the table between the bench markers
   std::string docs = SAS_DOCS_DIR;  // --docs: where contact-bench.{md,png} go ("-": nowhere)
+  bool choose = false;  // --choose: the contact policy per material (contact_choice.h)
+  std::string table = SAS_SOURCE_DIR "/app/files/contact_choices.inc";
+  std::string budget_docs = SAS_DOCS_DIR "/contact-budget.md";
 };
 
 double Seconds(Clock::time_point a, Clock::time_point b) {
@@ -538,6 +542,11 @@ int ParseArgs(int argc, char** argv, Options& o) {
       ->check(CLI::Range(1, 1000));
   app.add_option("--stress", o.stress, "run the stress test with this many randomised runs")
       ->check(CLI::Range(1L, 1000000000L));
+  app.add_flag("--choose", o.choose,
+               "choose each shipped material's contact policy from the error budget; writes the "
+               "table (--table) and docs/contact-budget.md (--budget-docs)");
+  app.add_option("--table", o.table, "the generated table (--choose; -: not written)");
+  app.add_option("--budget-docs", o.budget_docs, "the budget's figures (--choose; -: stdout)");
   app.add_option("--update-readme", o.readme,
                  "put the markdown table between this file's bench markers");
   if (const int code = sas::kiosk::ParseProgramCommandLine(app, argc, argv); code >= 0) return code;
@@ -1018,6 +1027,9 @@ int main(int argc, char** argv) {
   if (opt.rub_only) {
     std::printf("%s", bench::RubCostMarkdown(opt.quick, opt.reps).c_str());
     return 0;
+  }
+  if (opt.choose) {
+    return sas::bench::RunChoose({SAS_SOURCE_DIR "/textures/materials", opt.table, opt.budget_docs, opt.reps});
   }
   const auto bench_start = Clock::now();
 

@@ -50,7 +50,6 @@ const std::set<std::string>& KnownOpen() {
       "cracked ground/speed-sharpness/roll/p0.8",
       "cracked ground/style-spectra/scrape-roll/100mm/s,p0.2",
       "cracked ground/style-spectra/scrape-roll/300mm/s,p0.8",
-      "cracked ground/ramp-sharpness/rub/p0.2",
       "cracked ground/ramp-sharpness/rub/p0.8",
       "cracked ground/ramp-sharpness/roll/p0.2",
       "cracked ground/ramp-sharpness/roll/p0.8",

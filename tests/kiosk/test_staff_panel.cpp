@@ -126,6 +126,9 @@ TEST_CASE(
     }
     return nullptr;
   };
+  // The about lines name the contact scheme each texture runs.
+  REQUIRE(find("Contact (contact_bench's choice"));
+  CHECK(find("Contact (contact_bench's choice")->text.find(" x1-") != std::string::npos);
   REQUIRE(find("Pen tablet (pen): missing (libinput): no pen tablet"));
   CHECK(find("Pen tablet (pen): ")->warning);
   REQUIRE(find("Sound output (audio_out): ok (portaudio): running; xruns 0"));

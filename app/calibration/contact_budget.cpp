@@ -1,0 +1,221 @@
+// The contact error budget's measurements (see contact_budget.h).
+#include "calibration/contact_budget.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <limits>
+
+#include "surface/height_field.h"
+#include "synth/contact.h"
+#include "synth/hunt_crossley_closed_form.h"
+#include "synth/scene.h"
+#include "tools/builtin_profiles.h"
+
+namespace sas::kiosk {
+namespace {
+
+constexpr double kFs = 48000.0;
+// The hand's push and the penetration of a pen at mid pressure (pen_mapping.h: 2 N and the
+// field's relief at full pressure).
+constexpr double kPressure = 0.45;
+constexpr double kMaxForceN = 2.0;
+// The measured span starts after the landing's click (the impact budget covers landings).
+constexpr double kSettleS = 0.05;
+// The grating is 78 mm long: a stroke stays on it.
+constexpr double kPathM = 0.065;
+constexpr double kMaxStrokeS = 0.8;
+
+double WidthMm(synth::ProbeStyle style) {
+  switch (style) {
+    case synth::ProbeStyle::kRub:
+      return 4.0;  // a tilted pen (pen_mapping.h: 2 mm and wider rub)
+    case synth::ProbeStyle::kRoll:
+    case synth::ProbeStyle::kScrape:
+    default:
+      return 0.3;  // upright: rides the 0.6 mm ridges
+  }
+}
+
+const surface::HeightField& Grating() {
+  static const surface::HeightField field = *MakeBuiltinProfile("grating");
+  return field;
+}
+
+}  // namespace
+
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+const std::vector<double>& TargetSamplesLadder() {
+  // Steps of about √2: the cost of a contact is about proportional to its sub-steps.
+  static const std::vector<double> ladder = {1, 1.5, 2, 3, 4, 6, 8, 12, 17, 24, 34, 48, 68, 96, 136};
+  return ladder;
+}
+
+const std::vector<int>& SustainedLadder() {
+  static const std::vector<int> ladder = {1, 2, 4, 8, 16};
+  return ladder;
+}
+
+synth::MaterialParams WithPolicy(const synth::MaterialParams& material,
+                                 const ContactPolicy& policy) {
+  synth::MaterialParams m = material;
+  m.impact.scheme = policy.scheme;
+  m.impact.oversample = 0;
+  m.impact.target_contact_samples = policy.target_contact_samples;
+  m.impact.sustained_substeps = policy.sustained_substeps;
+  return m;
+}
+
+synth::MaterialParams FineReference(const synth::MaterialParams& material) {
+  synth::MaterialParams m = material;
+  m.impact.scheme = synth::kDefaultContactScheme;
+  m.impact.oversample = kReferenceOversample;
+  m.impact.target_contact_samples = 0.0;
+  m.impact.sustained_substeps = 0;
+  return m;
+}
+
+ImpactBudgetFigures MeasureImpactBudget(const synth::MaterialParams& material, int phase_stride) {
+  ImpactBudgetFigures figures;
+  const auto& im = material.impact;
+  const double mass = material.probe.mass_kg;
+  for (const double v : {0.03, 0.1, 0.3, 1.0, 3.0}) {
+    const double exact =
+        synth::HuntCrossleyImpact(mass, im.stiffness, im.dissipation_s_per_m, im.shape_alpha, v)
+            .exit_speed_mps;
+    const double allowed = v >= synth::kAbsoluteSpeedFloor
+                               ? kRestitutionBudget * exact
+                               : kRestitutionBudget * synth::kAbsoluteSpeedFloor;
+    for (int p = 0; p < 32; p += std::max(phase_stride, 1)) {
+      const auto run = synth::SimulateRigidWallImpact(im, mass, v, kFs, (p + 0.5) / 32.0);
+      const double error = run.separated ? std::fabs(run.exit_velocity_mps - exact)
+                                         : std::numeric_limits<double>::infinity();
+      if (v >= synth::kAbsoluteSpeedFloor) {
+        figures.worst_relative = std::max(figures.worst_relative, error / exact);
+      }
+      if (error / allowed > figures.worst_budget_ratio) {
+        figures.worst_budget_ratio = error / allowed;
+        figures.worst_speed_mps = v;
+      }
+    }
+  }
+  return figures;
+}
+
+std::string BudgetStroke::Name() const {
+  char text[64];
+  std::snprintf(text, sizeof text, "%s %.0f mm/s", std::string(synth::ProbeStyleName(style)).c_str(),
+                speed_mps * 1e3);
+  return text;
+}
+
+const std::vector<BudgetStroke>& BudgetStrokes() {
+  // Slow, where glass and metal stick and slip (and squeal), and fast, where the probe flies
+  // over the ridges and lands on each (the kiosk's grid spans 40–350 mm/s).
+  static const std::vector<BudgetStroke> strokes = {
+      {synth::ProbeStyle::kScrape, 0.04}, {synth::ProbeStyle::kScrape, 0.2},
+      {synth::ProbeStyle::kRub, 0.04},    {synth::ProbeStyle::kRub, 0.2},
+      {synth::ProbeStyle::kRoll, 0.04},   {synth::ProbeStyle::kRoll, 0.2},
+  };
+  return strokes;
+}
+
+StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const BudgetStroke& stroke,
+                                int reps) {
+  const auto& field = Grating();
+  const double relief = surface::ReliefM(field);
+  synth::ProbeCommand down;
+  down.tip_down = true;
+  down.x_m = 0.006;
+  down.y_m = 0.5 * field.height() * field.pitch_m();
+  down.velocity_mps = stroke.speed_mps;
+  down.normal_force_n = kPressure * kMaxForceN;
+  down.penetration_m = kPressure * relief;
+  down.width_mm = WidthMm(stroke.style);
+  down.style = stroke.style;
+  down.landing_speed_mps = 0.1;
+  const double duration = std::min(kMaxStrokeS, kPathM / stroke.speed_mps);
+  const long frames = static_cast<long>(duration * kFs);
+  const long settle = static_cast<long>(kSettleS * kFs);
+
+  synth::Scene scene;
+  scene.Init(kFs);
+  synth::OutputParams output;  // unit gains: far below the limiters, levels are linear
+  scene.Prepare(material, output, field.View());
+  StrokeRender result;
+  std::vector<float> out(2 * static_cast<std::size_t>(frames));
+  auto render = [&] {
+    scene.Reset();
+    for (long start = 0; start < frames; start += 128) {
+      const int n = static_cast<int>(std::min<long>(128, frames - start));
+      scene.Process(start == 0 ? &down : nullptr, start == 0 ? 1 : 0,
+                    out.data() + 2 * static_cast<std::size_t>(start), n);
+    }
+  };
+  auto measure = [&] {
+    double sound = 0.0, haptic = 0.0;
+    for (long f = settle; f < frames; ++f) {
+      const double s = out[2 * static_cast<std::size_t>(f)];
+      const double h = out[2 * static_cast<std::size_t>(f) + 1];
+      sound += s * s;
+      haptic += h * h;
+    }
+    result.sound_energy = sound;
+    result.haptic_energy = haptic;
+  };
+  if (reps <= 1) {
+    const double t0 = ThreadCpuSeconds();
+    render();
+    result.cpu_s = ThreadCpuSeconds() - t0;
+    measure();
+    return result;
+  }
+  render();  // warm-up
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < reps; ++r) {
+    const double t0 = ThreadCpuSeconds();
+    render();
+    best = std::min(best, ThreadCpuSeconds() - t0);
+  }
+  result.cpu_s = best;
+  measure();
+  return result;
+}
+
+StrokeBudgetFigures CompareLevels(const StrokeRender& run, const StrokeRender& reference) {
+  auto db = [](double e, double ref) {
+    if (!(ref > 0.0)) return e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+    if (!(e > 0.0)) return -std::numeric_limits<double>::infinity();
+    return 10.0 * std::log10(e / ref);
+  };
+  return {db(run.sound_energy, reference.sound_energy),
+          db(run.haptic_energy, reference.haptic_energy)};
+}
+
+StrokeReference MeasureStrokeReference(const synth::MaterialParams& material,
+                                       const BudgetStroke& stroke) {
+  StrokeReference ref;
+  const auto fine = FineReference(material);
+  ref.fine = RenderBudgetStroke(fine, stroke);
+  for (const double change : {1e-12, -1e-12}) {
+    auto perturbed = fine;
+    perturbed.resonator.modes[0].mass_kg *= 1.0 + change;
+    const auto f = CompareLevels(RenderBudgetStroke(perturbed, stroke), ref.fine);
+    ref.floor.sound_db = std::max(ref.floor.sound_db, std::fabs(f.sound_db));
+    ref.floor.haptic_db = std::max(ref.floor.haptic_db, std::fabs(f.haptic_db));
+  }
+  return ref;
+}
+
+bool StrokeReference::Meets(const StrokeBudgetFigures& f) const {
+  return std::fabs(f.sound_db) <= kLevelBudgetDb + floor.sound_db &&
+         std::fabs(f.haptic_db) <= kLevelBudgetDb + floor.haptic_db;
+}
+
+}  // namespace sas::kiosk
