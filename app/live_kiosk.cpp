@@ -395,7 +395,9 @@ class LiveLoop {
   // The health metrics file, every few seconds and soon after a device's state changed. Written
   // on this thread (a small file; the counters file is saved here too), never the audio thread.
   void WriteMetrics(std::int64_t now_ns) {
-    if (!metrics_.enabled()) return;
+    // The board is looked at four times a second, not every pass (it copies the table).
+    if (!metrics_.enabled() || now_ns - metrics_checked_ns_ < 250 * platform::kNsPerMs) return;
+    metrics_checked_ns_ = now_ns;
     const auto devices = p_.board.All();
     std::string state_key = p_.config_accepted ? "config accepted;" : "config rejected;";
     for (const auto& device : devices) {
@@ -500,6 +502,7 @@ class LiveLoop {
   kiosk::AmbientGain ambient_;
   kiosk::HealthMetricsWriter metrics_;
   std::string box_name_;
+  std::int64_t metrics_checked_ns_ = 0;
   double ambient_last_s_ = -1.0;
   bool passive_shown_ = false;  // the view is drawing the passive stroke's dent
   bool ready_ = false;          // a frame drew at an interactive pace and READY=1 was sent

@@ -114,8 +114,8 @@ TEST_CASE("the staff folder is /etc/sketch-a-scratch by default, an absolute pat
                     Catch::Contains("paths.staff_dir: expected a string"));
 }
 
-TEST_CASE("the fleet metrics file is a .prom name in the state folder by default, or none; its "
-          "interval 1-300 s; the box name any text",
+TEST_CASE("the fleet metrics file is a .prom name in the state folder by default, or none, its "
+          "interval 1-300 s, the box name any text",
           "[kiosk]") {
   const KioskConfig defaults = ParseKioskConfig("", "empty.toml");
   CHECK(defaults.metrics_file == "sketch_a_scratch.prom");
