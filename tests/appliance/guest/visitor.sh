@@ -511,6 +511,8 @@ apt-get remove -y -q sketch-a-scratch >"$out/remove.log" 2>&1
 judge remove_keeps_config "$config" test -f "$config"
 judge remove_keeps_counters "$counters" test -f "$counters"
 judge remove_removes_binary "/usr/bin/sketch-a-scratch" test ! -e /usr/bin/sketch-a-scratch
+judge remove_removes_metrics_link "node-exporter publishes no stopped kiosk's metrics" \
+  test ! -e /var/lib/prometheus/node-exporter/sketch_a_scratch.prom -a ! -L /var/lib/prometheus/node-exporter/sketch_a_scratch.prom
 judge remove_stops_kiosk "state $(systemctl show -p ActiveState --value $unit)" bash -c '! systemctl is-active -q sketch-a-scratch'
 apt-get purge -y -q sketch-a-scratch >"$out/purge.log" 2>&1
 judge purge_removes_config "/etc/sketch-a-scratch" test ! -e /etc/sketch-a-scratch
