@@ -20,10 +20,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -421,8 +421,7 @@ class LiveLoop {
     snapshot.speaker_leq_last_hour_dbfs = p_.engine.exposure().LastHourDb();
     const kiosk::SurfaceChoice shown = p_.engine.surface();
     snapshot.texture_shown =
-        shown.voice ? "voice"
-                    : p_.engine.textures()[static_cast<std::size_t>(shown.texture)].key;
+        shown.voice ? "voice" : p_.engine.textures()[static_cast<std::size_t>(shown.texture)].key;
     snapshot.config_accepted = p_.config_accepted;
     metrics_.Write(now_ns, state_key, kiosk::FormatHealthMetrics(snapshot));
   }

@@ -59,11 +59,12 @@ auto MetricsFile(std::string KioskConfig::*member) {
     const auto value = node.value<std::string>();
     if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
     const std::string suffix = ".prom";
-    if (!value->empty() && (value->size() <= suffix.size() || value->back() == '/' ||
-                            value->compare(value->size() - suffix.size(), suffix.size(),
-                                           suffix) != 0)) {
-      throw ConfigError(where + "expected a file name ending in .prom (node-exporter reads only "
-                                "those) or \"\"");
+    if (!value->empty() &&
+        (value->size() <= suffix.size() || value->back() == '/' ||
+         value->compare(value->size() - suffix.size(), suffix.size(), suffix) != 0)) {
+      throw ConfigError(where +
+                        "expected a file name ending in .prom (node-exporter reads only "
+                        "those) or \"\"");
     }
     config.*member = *value;
   };

@@ -83,8 +83,7 @@ std::string FormatHealthMetrics(const HealthSnapshot& s) {
   e.Family("sketch_a_scratch_info", "gauge", "The kiosk's version and the box's name (always 1).");
   e.Sample("sketch_a_scratch_info", Label("version", s.version) + "," + Label("box", s.box_name),
            "1");
-  e.Family("sketch_a_scratch_start_time_seconds", "gauge",
-           "Unix time the kiosk process started.");
+  e.Family("sketch_a_scratch_start_time_seconds", "gauge", "Unix time the kiosk process started.");
   e.Sample("sketch_a_scratch_start_time_seconds", "", Number(s.start_time_s));
   e.Family("sketch_a_scratch_uptime_seconds", "gauge", "Seconds since the kiosk process started.");
   e.Sample("sketch_a_scratch_uptime_seconds", "", Number(s.uptime_s));
@@ -99,10 +98,10 @@ std::string FormatHealthMetrics(const HealthSnapshot& s) {
            "the others.");
   for (const auto& device : s.devices) {
     for (const auto state : kStates) {
-      e.Sample("sketch_a_scratch_device_state",
-               Label("device", device.device) + "," +
-                   Label("state", platform::DeviceStateName(state)),
-               device.state == state ? "1" : "0");
+      e.Sample(
+          "sketch_a_scratch_device_state",
+          Label("device", device.device) + "," + Label("state", platform::DeviceStateName(state)),
+          device.state == state ? "1" : "0");
     }
   }
 
@@ -163,8 +162,7 @@ std::string DefaultBoxName() {
   return name;
 }
 
-HealthMetricsWriter::HealthMetricsWriter(std::string path, double interval_s,
-                                         platform::Logger& log)
+HealthMetricsWriter::HealthMetricsWriter(std::string path, double interval_s, platform::Logger& log)
     : path_(std::move(path)),
       interval_ns_(static_cast<std::int64_t>(interval_s * static_cast<double>(kNsPerS))),
       log_(&log) {

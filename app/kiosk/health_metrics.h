@@ -36,7 +36,7 @@ struct HealthSnapshot {
   UsageCounters counters;
   std::vector<std::string> texture_keys;
   std::optional<double> speaker_leq_last_hour_dbfs;
-  std::string texture_shown;  // a texture key, or "voice"
+  std::string texture_shown;    // a texture key, or "voice"
   bool config_accepted = true;  // false: the file was rejected (last good copy or defaults used)
 };
 

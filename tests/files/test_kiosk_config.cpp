@@ -114,9 +114,10 @@ TEST_CASE("the staff folder is /etc/sketch-a-scratch by default, an absolute pat
                     Catch::Contains("paths.staff_dir: expected a string"));
 }
 
-TEST_CASE("the fleet metrics file is a .prom name in the state folder by default, or none, its "
-          "interval 1-300 s, the box name any text",
-          "[kiosk]") {
+TEST_CASE(
+    "the fleet metrics file is a .prom name in the state folder by default, or none, its "
+    "interval 1-300 s, the box name any text",
+    "[kiosk]") {
   const KioskConfig defaults = ParseKioskConfig("", "empty.toml");
   CHECK(defaults.metrics_file == "sketch_a_scratch.prom");
   CHECK(defaults.metrics_interval_s == 5.0);
@@ -130,8 +131,9 @@ TEST_CASE("the fleet metrics file is a .prom name in the state folder by default
   CHECK(set.box_name == "Hall B");
   CHECK(ParseKioskConfig("[fleet]\nmetrics_file = \"\"\n", "k.toml").metrics_file.empty());
   // node-exporter reads only *.prom: any other name would be written for nobody.
-  CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nmetrics_file = \"box.txt\"\n", "k.toml"),
-                    Catch::Contains("k.toml:2: fleet.metrics_file: expected a file name ending in .prom"));
+  CHECK_THROWS_WITH(
+      ParseKioskConfig("[fleet]\nmetrics_file = \"box.txt\"\n", "k.toml"),
+      Catch::Contains("k.toml:2: fleet.metrics_file: expected a file name ending in .prom"));
   CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nmetrics_file = \".prom\"\n", "k.toml"),
                     Catch::Contains("fleet.metrics_file"));
   CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nmetrics_interval_s = 0.5\n", "k.toml"),

@@ -79,9 +79,10 @@ std::set<std::string> Entries(const std::filesystem::path& folder) {
 
 }  // namespace
 
-TEST_CASE("health metrics: every sample belongs to a family announced by HELP and TYPE before "
-          "it, counters end in _total, and every line is name{labels} value",
-          "[kiosk][metrics]") {
+TEST_CASE(
+    "health metrics: every sample belongs to a family announced by HELP and TYPE before "
+    "it, counters end in _total, and every line is name{labels} value",
+    "[kiosk][metrics]") {
   const std::string text = FormatHealthMetrics(Sample());
   REQUIRE(!text.empty());
   CHECK(text.back() == '\n');
@@ -116,7 +117,8 @@ TEST_CASE("health metrics: every sample belongs to a family announced by HELP an
       if (m[3].matched) {
         // Labels: name="value" pairs separated by commas (values may hold escaped quotes).
         const std::string labels = m[3].str();
-        const std::regex pairs(R"(^[a-zA-Z_][a-zA-Z0-9_]*="(?:[^"\\\n]|\\.)*"(,[a-zA-Z_][a-zA-Z0-9_]*="(?:[^"\\\n]|\\.)*")*$)");
+        const std::regex pairs(
+            R"(^[a-zA-Z_][a-zA-Z0-9_]*="(?:[^"\\\n]|\\.)*"(,[a-zA-Z_][a-zA-Z0-9_]*="(?:[^"\\\n]|\\.)*")*$)");
         CHECK(std::regex_match(labels, pairs));
       }
       ++samples;
@@ -125,9 +127,10 @@ TEST_CASE("health metrics: every sample belongs to a family announced by HELP an
   CHECK(samples > 20);
 }
 
-TEST_CASE("health metrics: the snapshot's counts, states, texture and verdict are the samples' "
-          "values, the box name escaped in its label",
-          "[kiosk][metrics]") {
+TEST_CASE(
+    "health metrics: the snapshot's counts, states, texture and verdict are the samples' "
+    "values, the box name escaped in its label",
+    "[kiosk][metrics]") {
   const auto samples = Samples(FormatHealthMetrics(Sample()));
   CHECK(samples.at(R"(sketch_a_scratch_info{version="9.8.7",box="hall \"B\"\\east"})") == "1");
   CHECK(samples.at("sketch_a_scratch_uptime_seconds") == "42.5");
@@ -141,8 +144,7 @@ TEST_CASE("health metrics: the snapshot's counts, states, texture and verdict ar
   CHECK(samples.at("sketch_a_scratch_visits_total") == "11");
   CHECK(samples.at(R"(sketch_a_scratch_strokes_total{texture="wooden_board"})") == "7");
   CHECK(samples.at(R"(sketch_a_scratch_strokes_total{texture="bubble_wrap"})") == "0");
-  CHECK(samples.at(R"(sketch_a_scratch_strokes_total{texture="broken_glass"})") ==
-        "123456789012");
+  CHECK(samples.at(R"(sketch_a_scratch_strokes_total{texture="broken_glass"})") == "123456789012");
   CHECK(samples.at(R"(sketch_a_scratch_strokes_total{texture="voice"})") == "6");
   CHECK(samples.at(R"(sketch_a_scratch_recordings_total{result="ok"})") == "2");
   CHECK(samples.at(R"(sketch_a_scratch_recordings_total{result="failed"})") == "5");
@@ -160,9 +162,10 @@ TEST_CASE("health metrics: the snapshot's counts, states, texture and verdict ar
   CHECK(unknown.at("sketch_a_scratch_speaker_leq_last_hour_dbfs") == "NaN");
 }
 
-TEST_CASE("health metrics writer: a write that fails (disk full, rename refused) leaves the "
-          "collector's folder with the last whole file and no temporary",
-          "[kiosk][metrics]") {
+TEST_CASE(
+    "health metrics writer: a write that fails (disk full, rename refused) leaves the "
+    "collector's folder with the last whole file and no temporary",
+    "[kiosk][metrics]") {
   sas::test::TempDir dir;
   sas::platform::Logger log;
   log.SetEchoToStderr(false);
@@ -208,9 +211,10 @@ TEST_CASE("health metrics writer: a write that fails (disk full, rename refused)
   CHECK(warnings == 1);
 }
 
-TEST_CASE("health metrics writer: due every interval, and within a second of a state change, "
-          "never more than once a second",
-          "[kiosk][metrics]") {
+TEST_CASE(
+    "health metrics writer: due every interval, and within a second of a state change, "
+    "never more than once a second",
+    "[kiosk][metrics]") {
   sas::test::TempDir dir;
   sas::platform::Logger log;
   log.SetEchoToStderr(false);
