@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -31,6 +32,7 @@
 #include "files/kiosk_config.h"
 #include "kiosk/ambient_gain.h"
 #include "kiosk/device_configs.h"
+#include "kiosk/health_metrics.h"
 #include "kiosk/kiosk_control.h"
 #include "kiosk/kiosk_engine.h"
 #include "kiosk/kiosk_signals.h"
@@ -45,6 +47,7 @@
 #include "platform/pen/pen_source.h"
 #include "platform/watchdog/busy_keeper.h"
 #include "platform/watchdog/watchdog.h"
+#include "sas/version.h"
 #include "staff_panel_view.h"
 #include "tools/command_line.h"
 #include "ui/display_probe.h"
@@ -220,6 +223,11 @@ struct LoopParts {
   platform::Logger& log;
   const KioskBackends& backends;
   std::FILE* out;  // the "kiosk ready" line
+  // The fleet's health metrics (kiosk/health_metrics.h).
+  std::string metrics_path;  // "": none
+  bool config_accepted;
+  std::int64_t started_ns;  // CLOCK_MONOTONIC and Unix time of the process's start
+  double started_unix_s;
 };
 
 // The main loop (main thread) and the little it keeps between passes.
@@ -230,7 +238,9 @@ class LiveLoop {
         width_(p_.window.width_px()),
         height_(p_.window.height_px()),
         buttons_(StaffButtonRects(width_, height_)),
-        ambient_(kiosk::AmbientGainConfigFrom(p_.config)) {}
+        ambient_(kiosk::AmbientGainConfigFrom(p_.config)),
+        metrics_(p_.metrics_path, p_.config.metrics_interval_s, p_.log),
+        box_name_(p_.config.box_name.empty() ? kiosk::DefaultBoxName() : p_.config.box_name) {}
 
   // Passes until SIGTERM/SIGINT.
   void Run() {
@@ -245,6 +255,7 @@ class LiveLoop {
       ShowPassiveStroke(now_ns);
       FollowStaffPanel();
       AdaptToAmbient(now_s);
+      WriteMetrics(now_ns);
       const std::int64_t draw_start_ns = platform::MonotonicNowNs();
       // A slow renderer's frame can outlast WatchdogSec without the kiosk being hung: the keeper
       // pings for the loop while it draws, for a bounded time (busy_keeper.h).
@@ -381,6 +392,40 @@ class LiveLoop {
     p_.engine.SetAmbientGainDb(ambient_.gain_db());
   }
 
+  // The health metrics file, every few seconds and soon after a device's state changed. Written
+  // on this thread (a small file; the counters file is saved here too), never the audio thread.
+  void WriteMetrics(std::int64_t now_ns) {
+    // The board is looked at four times a second, not every pass (it copies the table).
+    if (!metrics_.enabled() || now_ns - metrics_checked_ns_ < 250 * platform::kNsPerMs) return;
+    metrics_checked_ns_ = now_ns;
+    const auto devices = p_.board.All();
+    std::string state_key = p_.config_accepted ? "config accepted;" : "config rejected;";
+    for (const auto& device : devices) {
+      state_key += device.device + "=" + platform::DeviceStateName(device.state) + ";";
+    }
+    if (!metrics_.Due(now_ns, state_key)) return;
+    kiosk::HealthSnapshot snapshot;
+    snapshot.version = kVersion;
+    snapshot.box_name = box_name_;
+    snapshot.start_time_s = p_.started_unix_s;
+    snapshot.uptime_s = static_cast<double>(now_ns - p_.started_ns) * 1e-9;
+    snapshot.devices = devices;
+    const platform::AudioCallbackStats audio = p_.devices.output->Stats();
+    snapshot.xruns = audio.xruns;
+    if (audio.heartbeat_ns > 0) {
+      snapshot.audio_callback_age_s =
+          std::max(0.0, static_cast<double>(now_ns - audio.heartbeat_ns) * 1e-9);
+    }
+    snapshot.counters = p_.engine.PersistedCounters();
+    snapshot.texture_keys = p_.engine.counter_keys();
+    snapshot.speaker_leq_last_hour_dbfs = p_.engine.exposure().LastHourDb();
+    const kiosk::SurfaceChoice shown = p_.engine.surface();
+    snapshot.texture_shown =
+        shown.voice ? "voice" : p_.engine.textures()[static_cast<std::size_t>(shown.texture)].key;
+    snapshot.config_accepted = p_.config_accepted;
+    metrics_.Write(now_ns, state_key, kiosk::FormatHealthMetrics(snapshot));
+  }
+
   void Draw(double now_s) {
     ui::Overlays staff_overlays;
     if (p_.window.staff_panel_open()) {
@@ -454,6 +499,9 @@ class LiveLoop {
   StaffPanelView staff_view_;
   platform::PenReading last_pen_{};
   kiosk::AmbientGain ambient_;
+  kiosk::HealthMetricsWriter metrics_;
+  std::string box_name_;
+  std::int64_t metrics_checked_ns_ = 0;
   double ambient_last_s_ = -1.0;
   bool passive_shown_ = false;  // the view is drawing the passive stroke's dent
   bool ready_ = false;          // a frame drew at an interactive pace and READY=1 was sent
@@ -472,6 +520,8 @@ class LiveLoop {
 
 int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* err,
              const KioskBackends& backends) {
+  const std::int64_t started_ns = platform::MonotonicNowNs();
+  const double started_unix_s = static_cast<double>(std::time(nullptr));
   KioskArgs options;
   if (const int code = ParseKioskArgs(args, out, err, options); code >= 0) return code;
   // SIGHUP (the unit's reload) or SIGUSR1 would otherwise end the kiosk and lose the counters
@@ -533,8 +583,14 @@ int RunKiosk(const std::vector<std::string>& args, std::FILE* out, std::FILE* er
   watchdog.ReportTo(&log);
   started("devices open, drawing the first frame");
 
+  // A relative metrics file is in the state folder (the package links it into node-exporter's).
+  std::string metrics_path;
+  if (!config.metrics_file.empty()) {
+    metrics_path = (fs::path(options.state_dir) / config.metrics_file).string();
+  }
   LiveLoop({config, kiosk::ConfigStatusLine(options.config_path, loaded), window, *engine, *view,
-            devices, control, board, watchdog, log, backends, out})
+            devices, control, board, watchdog, log, backends, out, metrics_path,
+            loaded.source == kiosk::ConfigLoadResult::Source::kFile, started_ns, started_unix_s})
       .Run();
   control.Shutdown();
   devices.input->Stop();

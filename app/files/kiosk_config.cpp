@@ -52,6 +52,24 @@ auto Folder(std::string KioskConfig::*member) {
   };
 }
 
+// The metrics file: "" (none) or a name ending in .prom, the only files node-exporter's textfile
+// collector reads; a relative one is in the state folder.
+auto MetricsFile(std::string KioskConfig::*member) {
+  return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
+    const std::string suffix = ".prom";
+    if (!value->empty() &&
+        (value->size() <= suffix.size() || value->back() == '/' ||
+         value->compare(value->size() - suffix.size(), suffix.size(), suffix) != 0)) {
+      throw ConfigError(where +
+                        "expected a file name ending in .prom (node-exporter reads only "
+                        "those) or \"\"");
+    }
+    config.*member = *value;
+  };
+}
+
 auto Choice(std::string KioskConfig::*member, std::vector<std::string> choices) {
   return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     const auto value = node.value<std::string>();
@@ -266,6 +284,9 @@ const std::vector<KeySpec>& Schema() {
       {"textures", "token_3", TokenTexture(2)},
       {"textures", "token_4", TokenTexture(3)},
       {"paths", "staff_dir", Folder(&KioskConfig::staff_dir)},
+      {"fleet", "metrics_file", MetricsFile(&KioskConfig::metrics_file)},
+      {"fleet", "metrics_interval_s", Real(&KioskConfig::metrics_interval_s, 1.0, 300.0)},
+      {"fleet", "box_name", Text(&KioskConfig::box_name, true)},
   };
   return schema;
 }

@@ -97,6 +97,13 @@ struct KioskConfig {
   // <staff_dir>/cues/<language>/<cue key>.wav (kiosk/staff_cues.h), their own textures in
   // <staff_dir>/textures/<name>/. "": none are read.
   std::string staff_dir = "/etc/sketch-a-scratch";
+  // [fleet] — health metrics for a fleet watched by Prometheus (kiosk/health_metrics.h): the
+  // file node-exporter's textfile collector reads (a relative name is in the state folder, where
+  // the package's link in the collector's folder points; "": none written), how often it is
+  // rewritten, and the box's name in it ("": the host name).
+  std::string metrics_file = "sketch_a_scratch.prom";
+  double metrics_interval_s = 5.0;
+  std::string box_name;
 };
 
 // The largest configuration file read. The shipped kiosk.toml is a few kB with every key and

@@ -615,13 +615,7 @@ void KioskEngine::SetAmbientGainDb(double gain_db) {
   }
 }
 
-bool KioskEngine::SaveCounters(std::string* error) const {
-  if (options_.counters_path.empty()) return true;
-  if (!counters_may_save_) {
-    // Reported once at start: a damaged file that could not be moved aside is never replaced.
-    if (error) *error = options_.counters_path + " is damaged and could not be moved aside";
-    return false;
-  }
+UsageCounters KioskEngine::PersistedCounters() const {
   // Session counts for the loaded textures, the file's own for any left out.
   UsageCounters all = session_.counters();
   all.strokes_per_texture = file_counters_.strokes_per_texture;
@@ -632,6 +626,17 @@ bool KioskEngine::SaveCounters(std::string* error) const {
           session_.counters().strokes_per_texture[static_cast<std::size_t>(token_texture_[i])];
     }
   }
+  return all;
+}
+
+bool KioskEngine::SaveCounters(std::string* error) const {
+  if (options_.counters_path.empty()) return true;
+  if (!counters_may_save_) {
+    // Reported once at start: a damaged file that could not be moved aside is never replaced.
+    if (error) *error = options_.counters_path + " is damaged and could not be moved aside";
+    return false;
+  }
+  const UsageCounters all = PersistedCounters();
   std::string why;
   const bool saved = kiosk::SaveCounters(options_.counters_path, all, counter_keys_, &why);
   if (error) *error = why;

@@ -146,6 +146,10 @@ class KioskEngine final {
   void PlayTestTone();
   void PlayTransducerSweep();
   bool SaveCounters(std::string* error) const;
+  // The usage counts as the counters file holds them (counter_keys() order for the strokes):
+  // this run's for the loaded textures, the file's for any left out.
+  UsageCounters PersistedCounters() const;
+  const std::vector<std::string>& counter_keys() const { return counter_keys_; }
   // The visitor's language key: the next of the configured visitor languages, whose own name is
   // spoken in it; on the attract screen, the language it is showing. False (nothing changes) when
   // fewer than two are configured. The idle reset returns to the configured language.

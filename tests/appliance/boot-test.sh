@@ -56,9 +56,12 @@ die() { echo "boot-test: $*" >&2; exit 1; }
 [ "$(id -u)" -eq 0 ] || die "needs root (chroot and image files owned by the guest's users)"
 
 # The cached base: what a Debian 12 box has before the kiosk (systemd, udev, logind, the kernel,
-# ALSA's tools) plus systemd-coredump, so that a core dump would be kept if one were made. Made
+# ALSA's tools) plus systemd-coredump, so that a core dump would be kept if one were made, and
+# prometheus-node-exporter, the package's Recommends (the guest has no network; mmdebstrap
+# installs no Recommends of its own, so not node-exporter's collector scripts either). Made
 # into a part file and renamed when complete, so a run that was stopped leaves no half image.
-base_packages="systemd,systemd-sysv,udev,dbus,libpam-systemd,linux-image-amd64,kmod,alsa-utils,systemd-coredump,procps"
+# The key hashes the list: a changed list makes a new base.
+base_packages="systemd,systemd-sysv,udev,dbus,libpam-systemd,linux-image-amd64,kmod,alsa-utils,systemd-coredump,procps,prometheus-node-exporter"
 key=$(echo "bookworm $base_packages v1" | sha256sum | cut -c1-16)
 base="$cache/base-$key.tar"
 image_cache="cached"

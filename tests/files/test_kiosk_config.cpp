@@ -96,6 +96,9 @@ TEST_CASE("the shipped example configuration is valid and equals the built-in de
   CHECK(shipped.transducer_resonance_hz == defaults.transducer_resonance_hz);
   CHECK(shipped.transducer_q == defaults.transducer_q);
   CHECK(shipped.staff_dir == defaults.staff_dir);
+  CHECK(shipped.metrics_file == defaults.metrics_file);
+  CHECK(shipped.metrics_interval_s == defaults.metrics_interval_s);
+  CHECK(shipped.box_name == defaults.box_name);
 }
 
 TEST_CASE("the staff folder is /etc/sketch-a-scratch by default, an absolute path or none",
@@ -109,6 +112,34 @@ TEST_CASE("the staff folder is /etc/sketch-a-scratch by default, an absolute pat
                     Catch::Contains("k.toml:2: paths.staff_dir: expected an absolute path"));
   CHECK_THROWS_WITH(ParseKioskConfig("[paths]\nstaff_dir = 3\n", "k.toml"),
                     Catch::Contains("paths.staff_dir: expected a string"));
+}
+
+TEST_CASE(
+    "the fleet metrics file is a .prom name in the state folder by default, or none, its "
+    "interval 1-300 s, the box name any text",
+    "[kiosk]") {
+  const KioskConfig defaults = ParseKioskConfig("", "empty.toml");
+  CHECK(defaults.metrics_file == "sketch_a_scratch.prom");
+  CHECK(defaults.metrics_interval_s == 5.0);
+  CHECK(defaults.box_name.empty());
+  const KioskConfig set = ParseKioskConfig(
+      "[fleet]\nmetrics_file = \"/var/lib/other/box.prom\"\nmetrics_interval_s = 30\n"
+      "box_name = \"Hall B\"\n",
+      "k.toml");
+  CHECK(set.metrics_file == "/var/lib/other/box.prom");
+  CHECK(set.metrics_interval_s == 30.0);
+  CHECK(set.box_name == "Hall B");
+  CHECK(ParseKioskConfig("[fleet]\nmetrics_file = \"\"\n", "k.toml").metrics_file.empty());
+  // node-exporter reads only *.prom: any other name would be written for nobody.
+  CHECK_THROWS_WITH(
+      ParseKioskConfig("[fleet]\nmetrics_file = \"box.txt\"\n", "k.toml"),
+      Catch::Contains("k.toml:2: fleet.metrics_file: expected a file name ending in .prom"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nmetrics_file = \".prom\"\n", "k.toml"),
+                    Catch::Contains("fleet.metrics_file"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nmetrics_interval_s = 0.5\n", "k.toml"),
+                    Catch::Contains("fleet.metrics_interval_s: 0.5 is out of range"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[fleet]\nbox_name = 7\n", "k.toml"),
+                    Catch::Contains("fleet.box_name: expected a string"));
 }
 
 TEST_CASE("the transducer profile: off by default, 0 or 20-1000 Hz, q 0.3-50", "[kiosk]") {

@@ -156,6 +156,29 @@ touched_in_visit() {
   return 1
 }
 leave_attract() { kiosk_steady; until_true "visit started" touched_in_visit; }
+# The fleet's view: node-exporter's page (the kiosk's metrics reach it through the package's link
+# in its textfile folder), read with bash's /dev/tcp (the image has no curl). The first read is
+# the whole page; the polls after it ask for the textfile collector alone, which node-exporter
+# serves in a fraction of the whole page's time under emulation.
+scraped=/run/sas-scrape.txt
+scrape() {  # scrape [QUERY]: the page into $scraped; false when node-exporter does not answer
+  timeout 120 bash -c 'exec 3<>/dev/tcp/127.0.0.1/9100 &&
+    printf "GET /metrics%s HTTP/1.0\r\nHost: localhost\r\n\r\n" "$1" >&3 && cat <&3' _ "${1:-}" \
+    >"$scraped.part" 2>/dev/null && mv "$scraped.part" "$scraped"
+}
+poll() { scrape '?collect%5B%5D=textfile'; }
+metric() {  # metric 'name{labels}': its value in the last page read
+  awk -v k="$1 " 'index($0, k) == 1 { print substr($0, length(k) + 1) }' "$scraped" | tail -1
+}
+# metric_is NAME VALUE: a fresh poll shows the metric at the value
+metric_is() { poll && [ "$(metric "$1")" = "$2" ]; }
+strokes_key='sketch_a_scratch_strokes_total{texture="wooden_board"}'
+strokes_above() { poll && [ "$(metric "$strokes_key")" -gt "$1" ] 2>/dev/null; }
+started_other_than() { poll && [ -n "$(metric sketch_a_scratch_start_time_seconds)" ] &&
+  [ "$(metric sketch_a_scratch_start_time_seconds)" != "$1" ]; }
+kiosk_metrics_served() {
+  scrape && grep -q '^sketch_a_scratch_info{' "$scraped" && grep -q '^node_textfile_scrape_error 0' "$scraped"
+}
 
 log "visitor starts"
 # --- 1. the unit comes up: READY (Type=notify: active), watchdog pings, security exposure
@@ -184,6 +207,16 @@ judge cues_installed "$(ls /usr/share/sketch-a-scratch/cues 2>/dev/null | tr '\n
 cp /usr/share/sketch-a-scratch/cues/en/*.wav "$out/cues/" 2>/dev/null
 judge no_cue_warning "journal" \
   bash -c "! journalctl -u $unit -b -p warning -o cat --no-pager | grep -q 'spoken cues'"
+# The kiosk's health on node-exporter's /metrics, with no scrape error of the textfile collector.
+# The later metrics checks wait only when this one passed (else each would wait out its deadline).
+metrics_ok=0
+if until_true "metrics: the kiosk's on node-exporter" kiosk_metrics_served; then
+  metrics_ok=1
+  cp "$scraped" "$out/metrics-at-boot.txt"
+  pass metrics_on_node_exporter "http://localhost:9100/metrics: $(grep -c '^sketch_a_scratch_' "$scraped") sketch_a_scratch_ samples, $(grep '^sketch_a_scratch_info' "$scraped"), pen ok=$(metric 'sketch_a_scratch_device_state{device="pen",state="ok"}'), link $(readlink /var/lib/prometheus/node-exporter/sketch_a_scratch.prom)"
+else
+  fail metrics_on_node_exporter "no sketch_a_scratch_info on http://localhost:9100/metrics (or a textfile scrape error); $(ls -l /var/lib/prometheus/node-exporter/ 2>&1 | tr '\n' ' ')"
+fi
 
 # --- 2./3. the stroke: screen and sound. Capture the loopback's other end for the whole visit.
 arecord -q -D plughw:CARD=Loopback,DEV=1,SUBDEV=0 -f FLOAT_LE -c 2 -r 48000 -t raw "$capture" &
@@ -192,6 +225,8 @@ capture_started() { [ "$(stat -c %s "$capture" 2>/dev/null || echo 0)" -gt 0 ]; 
 until_true "capture started" capture_started
 leave_attract
 shot explore matches wooden_board
+poll
+strokes_before=$(metric "$strokes_key")
 mark_journal
 mark stroke_down
 dev down 0.35 0.50 0.5 10
@@ -202,6 +237,12 @@ shot dent dent 60 55 wooden_board
 mark stroke_lift
 dev up
 capture_wait stroke_quiet "$(mark_value stroke_lift)" quiet -70 0.3
+strokes_rose() {
+  [ "$metrics_ok" = 1 ] && [ -n "$strokes_before" ] &&
+    until_true "metrics: strokes rise" strokes_above "$strokes_before"
+}
+judge metrics_strokes_rise "wooden_board strokes on node-exporter: ${strokes_before:-none} before the stroke, then above it" \
+  strokes_rose
 
 # --- 4. a token on the MCP2221A: texture switch on screen, its spoken name on the speaker
 mark_journal
@@ -257,6 +298,9 @@ if wait_journal 'recording started'; then
     aplay -q -D plughw:CARD=Loopback,DEV=1,SUBDEV=0 -t raw -f S16_LE -c 1 -r 48000 &
   aplay_pid=$!
   pid=$(main_pid)
+  poll
+  strokes_before_crash=$(metric "$strokes_key")
+  started_before_crash=$(metric sketch_a_scratch_start_time_seconds)
   t_kill=$(now)
   kill -SEGV "$pid"
   if wait_active_pid "$pid"; then
@@ -280,6 +324,14 @@ if wait_journal 'recording started'; then
     fail segv_restart "no new kiosk within $long s"
   fi
   wait "$aplay_pid"
+  # The restarted kiosk's own metrics (a new start time) hold the strokes counted before the crash
+  # (the counters file had saved them).
+  if [ "$metrics_ok" = 1 ] && until_true "metrics: the restarted kiosk's" started_other_than "$started_before_crash"; then
+    judge metrics_strokes_kept_across_restart "wooden_board strokes ${strokes_before_crash:-none} before the SIGSEGV, $(metric "$strokes_key") from the restarted kiosk" \
+      test "$(metric "$strokes_key")" -ge "${strokes_before_crash:-1}" -a "${strokes_before_crash:-0}" -gt 0
+  else
+    fail metrics_strokes_kept_across_restart "the restarted kiosk wrote no metrics"
+  fi
   kiosk_core() { ls /var/lib/systemd/coredump/core.sketch-a-scratc* >/dev/null 2>&1; }
   until_true "kiosk core dump on disk" kiosk_core
   coredumpctl list --no-pager 2>&1 | tee "$out/coredumps.txt"
@@ -324,16 +376,33 @@ mark_journal
 judge staff_panel_opens "journal: staff panel opened" chord_until 'staff panel opened'
 # The panel's amber title is on screen.
 shot panel amber-min 500
+pen_ok='sketch_a_scratch_device_state{device="pen",state="ok"}'
 for device in pen board; do
   mark_journal
+  t_unplug=$(now)
   dev "$device" unplug
   name=$([ "$device" = pen ] && echo pen || echo switches)
   judge "${device}_unplug_warning" "journalctl -p warning" wait_journal "^warn $name" warning
+  if [ "$device" = pen ] && [ "$metrics_ok" != 1 ]; then
+    fail metrics_pen_unplug_10s "not checked: no kiosk metrics on node-exporter at boot"
+  elif [ "$device" = pen ]; then
+    # The fleet sees it too: the pen's state on node-exporter within 10 s of the unplug.
+    if until_true "metrics: pen not ok" metric_is "$pen_ok" 0; then
+      took=$(sub "$(now)" "$t_unplug")
+      judge metrics_pen_unplug_10s "pen ok=0, state $(grep '^sketch_a_scratch_device_state{device="pen"' "$scraped" | grep ' 1$' | sed 's/.*state="\([a-z]*\)".*/\1/') on node-exporter ${took} s after the unplug" le "$took" 10
+    else
+      fail metrics_pen_unplug_10s "the pen's state never changed on node-exporter"
+    fi
+  fi
   journalctl -u "$unit" -p warning --since "@$since" -o cat --no-pager | tail -3
   shot "panel_${device}_lost" amber-above panel 200
   mark_journal
   dev "$device" plug
   judge "${device}_replug" "journal: back" wait_journal "$name.*back\|$name: ok"
+  if [ "$device" = pen ] && [ "$metrics_ok" = 1 ]; then
+    judge metrics_pen_back "pen ok=1 on node-exporter after the replug" \
+      until_true "metrics: pen ok" metric_is "$pen_ok" 1
+  fi
   shot "panel_${device}_back" amber-below "panel_${device}_lost" 200
 done
 mark_journal
@@ -451,6 +520,8 @@ apt-get remove -y -q sketch-a-scratch >"$out/remove.log" 2>&1
 judge remove_keeps_config "$config" test -f "$config"
 judge remove_keeps_counters "$counters" test -f "$counters"
 judge remove_removes_binary "/usr/bin/sketch-a-scratch" test ! -e /usr/bin/sketch-a-scratch
+judge remove_removes_metrics_link "node-exporter publishes no stopped kiosk's metrics" \
+  test ! -e /var/lib/prometheus/node-exporter/sketch_a_scratch.prom -a ! -L /var/lib/prometheus/node-exporter/sketch_a_scratch.prom
 judge remove_stops_kiosk "state $(systemctl show -p ActiveState --value $unit)" bash -c '! systemctl is-active -q sketch-a-scratch'
 apt-get purge -y -q sketch-a-scratch >"$out/purge.log" 2>&1
 judge purge_removes_config "/etc/sketch-a-scratch" test ! -e /etc/sketch-a-scratch
