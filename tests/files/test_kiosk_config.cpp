@@ -391,7 +391,7 @@ TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is b
              Catch::Contains("staff.toml:2: staff.chord_hold_s: 60 is out of range"));
 }
 
-TEST_CASE("kiosk.toml: [textures] names each token's texture; a name that could leave the textures folder is an error at its line",
+TEST_CASE("kiosk.toml: the textures table names each token's texture, and a name that could leave the textures folder is an error at its line",
           "[kiosk]") {
   const KioskConfig config =
       ParseKioskConfig("[textures]\ntoken_3 = \"river_pebbles\"\n", "k.toml");
