@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "common/text.h"
 #include "calibration/population_levels.h"
 #include "calibration/texture_levels.h"
 #include "cue_voice.h"
@@ -39,6 +40,9 @@
 namespace sas::app {
 namespace {
 
+using text::Fixed;
+using text::Joined;
+
 namespace fs = std::filesystem;
 using kiosk::kExitOk;
 using kiosk::kExitRuntimeError;
@@ -59,18 +63,6 @@ constexpr std::size_t kMinScanSamples = 8;
 constexpr double kMaxScanHeightMm = 50.0;
 // The visitor population the trim is calibrated on; the tests judge another seed (2026).
 constexpr unsigned kTrimSeed = 1;
-
-std::string Fixed(double value, int digits) {
-  char text[48];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
-
-std::string Joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
 
 bool IsKey(const std::string& name) {
   return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {

@@ -10,12 +10,16 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/text.h"
 #include "files/strings.h"
 #include "surface/audio_file.h"
 #include "surface/cue_library.h"
 
 namespace sas::kiosk {
 namespace {
+
+using text::Fixed;
+using text::Joined;
 
 namespace fs = std::filesystem;
 
@@ -32,18 +36,6 @@ constexpr double kMaxShortfallLu = 6.0;
 std::string Lower(std::string text) {
   for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return text;
-}
-
-std::string Fixed(double value, int digits) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
-
-std::string Joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
 }
 
 std::vector<fs::path> SortedEntries(const fs::path& dir) {

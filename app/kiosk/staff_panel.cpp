@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "common/text.h"
 #include "files/contact_scheme_names.h"
 #include "sas/version.h"
 #include "synth/contact.h"
@@ -13,11 +14,7 @@
 namespace sas::kiosk {
 namespace {
 
-std::string Fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
+using text::Fixed;
 
 // "3 %": a share in whole percent, one decimal below 10 % (a light load still reads as moving).
 std::string Percent(double share) {
