@@ -21,7 +21,9 @@ bool Fail(std::string* error, const std::string& what, int err) {
 
 }  // namespace
 
-bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error) {
+bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error,
+                     Durability durability) {
+  const bool synced = durability == Durability::kSynced;
   const std::filesystem::path target(path);
   const std::filesystem::path directory =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
@@ -46,7 +48,7 @@ bool AtomicWriteFile(const std::string& path, const std::string& contents, std::
   }
   // mkstemp creates 0600; the files we keep are readable by staff tools.
   if (fchmod(fd, 0644) != 0) return abandon("setting permissions of " + path, errno);
-  if (fsync(fd) != 0) return abandon("flushing " + path + " to disk", errno);
+  if (synced && fsync(fd) != 0) return abandon("flushing " + path + " to disk", errno);
   if (close(fd) != 0) {
     const int err = errno;
     unlink(temp.c_str());
@@ -57,6 +59,7 @@ bool AtomicWriteFile(const std::string& path, const std::string& contents, std::
     unlink(temp.c_str());
     return Fail(error, "replacing " + path, err);
   }
+  if (!synced) return true;
   // Make the rename itself durable.
   const int dir_fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dir_fd >= 0) {

@@ -9,9 +9,16 @@
 
 namespace sas::kiosk {
 
+// kSynced: the new contents and the rename reach the disk before the call returns (staff data,
+// counters). kReadersOnly: readers still see the old or the new file whole (the rename), but
+// nothing waits for the disk: for a file rewritten every few seconds whose loss at a power cut
+// costs nothing (the health metrics), where an fsync on a slow SD card would stall the caller.
+enum class Durability { kSynced, kReadersOnly };
+
 // Returns true on success; on failure returns false, leaves `path` untouched, removes the
 // temporary file and puts a readable reason in `error`.
-bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error);
+bool AtomicWriteFile(const std::string& path, const std::string& contents, std::string* error,
+                     Durability durability = Durability::kSynced);
 
 // Removes the temporary files AtomicWriteFile leaves next to `path` when the process is killed
 // between creating and renaming one (".<name>.XXXXXX"); `path` itself is never touched.

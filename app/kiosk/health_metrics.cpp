@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::int64_t kNsPerS = 1'000'000'000;
 // An early write (a state changed) comes at most this often: a flapping cable must not turn the
-// writer into a loop of fsyncs.
+// writer into a loop of rewrites.
 constexpr std::int64_t kMinGapNs = kNsPerS;
 
 // Label values may hold any UTF-8; the format escapes backslash, double quote and newline.
@@ -186,7 +186,9 @@ bool HealthMetricsWriter::Write(std::int64_t now_ns, const std::string& state_ke
   last_write_ns_ = now_ns;
   last_state_key_ = state_key;
   std::string error;
-  if (!AtomicWriteFile(path_, text, &error)) {
+  // Not synced to disk: the file is rewritten within a few seconds of every start, and the
+  // control loop that writes it also draws the picture.
+  if (!AtomicWriteFile(path_, text, &error, Durability::kReadersOnly)) {
     if (!failing_) log_->Warn("metrics", "not written: " + error + "; retrying");
     failing_ = true;
     return false;

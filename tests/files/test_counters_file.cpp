@@ -122,6 +122,25 @@ TEST_CASE("atomic write replaces the whole file and reports an unwritable direct
   CHECK_THAT(error, Catch::Contains("missing-dir"));
 }
 
+TEST_CASE("an unsynced atomic write still replaces the whole file, mode 0644, no temporary left",
+          "[kiosk]") {
+  sas::test::TempDir dir;
+  const auto path = dir.Write("m.prom", "old contents that are longer than the new ones");
+  std::string error;
+  REQUIRE(sas::kiosk::AtomicWriteFile(path, "new", &error, sas::kiosk::Durability::kReadersOnly));
+  CHECK(ReadAll(path) == "new");
+  const auto perms = std::filesystem::status(path).permissions();
+  CHECK((perms & std::filesystem::perms::others_read) != std::filesystem::perms::none);
+  int entries = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    ++entries;
+  }
+  CHECK(entries == 1);
+  CHECK_FALSE(sas::kiosk::AtomicWriteFile(dir.file("missing-dir/m.prom"), "x", &error,
+                                          sas::kiosk::Durability::kReadersOnly));
+  CHECK_THAT(error, Catch::Contains("missing-dir"));
+}
+
 TEST_CASE(
     "the start-up load removes the temporaries a kill left next to the counters or the backup",
     "[kiosk]") {
