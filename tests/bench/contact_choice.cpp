@@ -75,7 +75,17 @@ struct MaterialResult {
   // misses.
   std::string builtin_fails;
   double builtin_ns_per_sample = 0.0;  // the built-in policy (default scheme, 136 / 4)
+  // Where the cheapest policy meeting the budget costs more than the ceiling: which it is and
+  // what it costs (the material then keeps the built-in policy).
+  std::string over_ceiling;
 };
+
+// A choice may cost at most this many times the built-in policy on the budget strokes. The
+// kiosk's audio callback has to render a visitor's stroke in real time on a small box: broken
+// glass at fixed x16 (4-5x the built-in) took its slowest 64-frame block to 63 % of its period
+// and its median stroke from 2.2 % to 15 % of a core (visitor_bench), where the benchmark's own
+// targets are 10 % and 1 %.
+constexpr double kCostCeiling = 2.0;
 
 // The budget figures of `params` on the strokes `which`; with `stop_at_miss`, only up to the first
 // stroke that misses (a rung that misses one is not taken: the rest is not needed).
@@ -322,7 +332,14 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
      << kiosk::kLevelBudgetDb
      << " dB + the standard error of that difference, √(sd_policy²/n + sd_reference²/n). The "
         "same test with a standard error of 0 on a deterministic stroke: a shifted stick-slip "
-        "onset or a missed bounce is an error, not chaos.\n\n";
+        "onset or a missed bounce is an error, not chaos.\n"
+     << "- **Cost ceiling**: a policy is chosen only if its budget strokes cost at most "
+     << kCostCeiling
+     << " times the built-in policy's. The audio callback renders a visitor's stroke in real time: "
+        "broken glass at fixed ×16 (four to five times the built-in policy's cost; visitor_bench, "
+        "measured while it ran so) took its slowest 64-frame block to 63 % of its period and "
+        "its median stroke from 2.2 % to 15 % of a core, where the targets are 10 % and 1 %. A material whose cheapest budget-meeting policy costs more "
+        "keeps the built-in one, and the table below says what it misses.\n\n";
   double worst_chosen = 0.0;
   for (const auto& m : results) {
     if (m.best >= 0) {
@@ -462,7 +479,12 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
   md << "---|\n";
   for (const auto& m : results) {
     if (m.best < 0) {
-      md << "| " << m.material.name << " | none met the budget: the built-in policy ("
+      md << "| " << m.material.name << " | "
+         << (m.over_ceiling.empty()
+                 ? std::string("none met the budget")
+                 : "none met the budget within the cost ceiling (the cheapest that does: " +
+                       m.over_ceiling + ")")
+         << ": the built-in policy ("
          << SchemeName(synth::kDefaultContactScheme) << ", "
          << G17(synth::TargetContactSamples(synth::kDefaultContactScheme)) << " / "
          << synth::kSustainedContactSubsteps << ") stays, and misses it: "
@@ -515,6 +537,16 @@ int RunChoose(const ChooseOptions& options) {
     const auto builtin =
         kiosk::WithPolicy(m.material.params, {synth::kDefaultContactScheme, 0, 0, 0});
     m.builtin_ns_per_sample = NsPerSample(builtin, options.reps);
+    if (m.best >= 0 && best_ns > kCostCeiling * m.builtin_ns_per_sample) {
+      const auto& s = m.schemes[static_cast<std::size_t>(m.best)];
+      char text[160];
+      std::snprintf(text, sizeof text, "%s %s, %.0f ns per sample (%.1fx the built-in's %.0f)",
+                    SchemeName(s.scheme).c_str(),
+                    kiosk::PolicyName(s.ladder[static_cast<std::size_t>(s.chosen)]).c_str(),
+                    best_ns, best_ns / m.builtin_ns_per_sample, m.builtin_ns_per_sample);
+      m.over_ceiling = text;
+      m.best = -1;
+    }
     if (m.best < 0) {
       const auto& params = builtin;
       const auto all = AllStrokes();
@@ -537,7 +569,9 @@ int RunChoose(const ChooseOptions& options) {
   } else {
     std::fputs(md.c_str(), stdout);
   }
-  return std::all_of(results.begin(), results.end(), [](const auto& m) { return m.best >= 0; })
+  // A material over the cost ceiling is a finding the docs report, not a failure of the tool.
+  return std::all_of(results.begin(), results.end(),
+                     [](const auto& m) { return m.best >= 0 || !m.over_ceiling.empty(); })
              ? 0
              : 1;
 }

@@ -25,6 +25,10 @@ constexpr int kPhaseStride = 2;
 constexpr bool kEveryMaterial = true;
 #endif
 
+// The materials contact_bench --choose found no budget-meeting policy for within its cost
+// ceiling (glass: fixed x16 on every contact sample, four to five times the built-in policy).
+bool IsOverCostCeiling(const std::string& name) { return name == "glass"; }
+
 std::vector<kiosk::Material> ShippedMaterials() {
   for (const auto& dir : kiosk::MaterialSearchDirs("")) {
     if (!kiosk::ListMaterialNames(dir).empty()) return kiosk::LoadMaterialDirectory(dir);
@@ -70,10 +74,12 @@ TEST_CASE(
     }
     CHECK(found);
   }
-  // Every shipped material runs a measured policy (none is left on the built-in one).
+  // Every shipped material runs a measured policy, except those whose cheapest budget-meeting
+  // policy is over the tool's cost ceiling (docs/contact-budget.md): they keep the built-in one.
+  // Once one gets a row, it must leave this list.
   for (const auto& m : materials) {
     INFO(m.name);
-    CHECK(m.contact_from_benchmark);
+    CHECK(m.contact_from_benchmark != IsOverCostCeiling(m.name));
   }
 }
 
@@ -91,7 +97,6 @@ TEST_CASE(
     const auto impact = kiosk::MeasureImpactBudget(m.params, kPhaseStride);
     INFO("worst impact error " << impact.worst_relative << " relative, " << impact.worst_budget_ratio
                                << "x the budget at " << impact.worst_speed_mps << " m/s");
-    CHECK(impact.Meets());
     std::vector<kiosk::StrokeReference> references;
     for (const auto& stroke : kiosk::BudgetStrokes()) {
       references.push_back(kiosk::MeasureStrokeReference(m.params, stroke));
@@ -99,6 +104,13 @@ TEST_CASE(
     std::string why;
     const bool meets = StrokesMeet(m.params, references, &why);
     INFO(why);
+    if (!m.contact_from_benchmark) {
+      // Left on the built-in policy: the docs say it misses the budget; if it met it, the tool
+      // would have chosen it (or a cheaper one) and the table would be stale.
+      CHECK_FALSE((impact.Meets() && meets));
+      continue;
+    }
+    CHECK(impact.Meets());
     CHECK(meets);
 
     // Coarser: the first-order explicit scheme at the same sub-steps misses the impact budget.
