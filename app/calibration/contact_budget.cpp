@@ -62,13 +62,57 @@ const std::vector<int>& SustainedLadder() {
   return ladder;
 }
 
+const std::vector<int>& FixedLadder() {
+  static const std::vector<int> ladder = {2, 3, 4, 6, 8, 12, 16};
+  return ladder;
+}
+
+std::vector<ContactPolicy> PolicyLadder(synth::ContactScheme scheme) {
+  std::vector<ContactPolicy> ladder;
+  for (const double t : TargetSamplesLadder()) {
+    for (const int h : SustainedLadder()) ladder.push_back({scheme, t, h, 0});
+  }
+  for (const int n : FixedLadder()) ladder.push_back({scheme, 0.0, 0, n});
+  return ladder;
+}
+
+int LadderIndex(const ContactPolicy& policy) {
+  const auto ladder = PolicyLadder(policy.scheme);
+  for (std::size_t i = 0; i < ladder.size(); ++i) {
+    const auto& r = ladder[i];
+    if (policy.oversample > 0 ? r.oversample == policy.oversample
+                              : r.oversample == 0 &&
+                                    r.target_contact_samples == policy.target_contact_samples &&
+                                    r.sustained_substeps == policy.sustained_substeps) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+std::string PolicyName(const ContactPolicy& policy) {
+  char text[48];
+  if (policy.oversample > 0) {
+    std::snprintf(text, sizeof text, "fixed x%d", policy.oversample);
+  } else {
+    std::snprintf(text, sizeof text, "%g / %d", policy.target_contact_samples,
+                  policy.sustained_substeps);
+  }
+  return text;
+}
+
+ContactPolicy PolicyOf(const synth::MaterialParams& material) {
+  return {material.impact.scheme, material.impact.target_contact_samples,
+          material.impact.sustained_substeps, material.impact.oversample};
+}
+
 synth::MaterialParams WithPolicy(const synth::MaterialParams& material,
                                  const ContactPolicy& policy) {
   synth::MaterialParams m = material;
   m.impact.scheme = policy.scheme;
-  m.impact.oversample = 0;
-  m.impact.target_contact_samples = policy.target_contact_samples;
-  m.impact.sustained_substeps = policy.sustained_substeps;
+  m.impact.oversample = policy.oversample;
+  m.impact.target_contact_samples = policy.oversample > 0 ? 0.0 : policy.target_contact_samples;
+  m.impact.sustained_substeps = policy.oversample > 0 ? 0 : policy.sustained_substeps;
   return m;
 }
 
@@ -127,12 +171,12 @@ const std::vector<BudgetStroke>& BudgetStrokes() {
 }
 
 StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const BudgetStroke& stroke,
-                                int reps) {
+                                int reps, double start_offset_m) {
   const auto& field = Grating();
   const double relief = surface::ReliefM(field);
   synth::ProbeCommand down;
   down.tip_down = true;
-  down.x_m = 0.006;
+  down.x_m = 0.006 + start_offset_m;
   down.y_m = 0.5 * field.height() * field.pitch_m();
   down.velocity_mps = stroke.speed_mps;
   down.normal_force_n = kPressure * kMaxForceN;
@@ -188,34 +232,79 @@ StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const Bud
   return result;
 }
 
-StrokeBudgetFigures CompareLevels(const StrokeRender& run, const StrokeRender& reference) {
-  auto db = [](double e, double ref) {
-    if (!(ref > 0.0)) return e > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
-    if (!(e > 0.0)) return -std::numeric_limits<double>::infinity();
-    return 10.0 * std::log10(e / ref);
+StrokeLevels MeasureStrokeLevels(const synth::MaterialParams& material,
+                                 const BudgetStroke& stroke) {
+  std::vector<double> sound, haptic;
+  auto run = [&](int i) {
+    auto m = material;
+    if (!m.resonator.modes.empty()) m.resonator.modes[0].mass_kg *= 1.0 + 1e-12 * i;
+    auto perturbed = stroke;
+    perturbed.speed_mps *= 1.0 + 1e-6 * i;
+    const auto r = RenderBudgetStroke(m, perturbed, 1, 1e-8 * i);
+    auto db = [](double e) {
+      return e > 0.0 ? 10.0 * std::log10(e) : -std::numeric_limits<double>::infinity();
+    };
+    sound.push_back(db(r.sound_energy));
+    haptic.push_back(db(r.haptic_energy));
   };
-  return {db(run.sound_energy, reference.sound_energy),
-          db(run.haptic_energy, reference.haptic_energy)};
+  auto spread = [](const std::vector<double>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return *hi - *lo;
+  };
+  for (int i = 0; i < kProbeMembers; ++i) run(i);
+  StrokeLevels levels;
+  if (!(spread(sound) <= kDeterministicDb && spread(haptic) <= kDeterministicDb)) {
+    for (int i = kProbeMembers; i < kEnsembleMembers; ++i) run(i);
+  }
+  levels.members = static_cast<int>(sound.size());
+  auto stats = [&](const std::vector<double>& v, double& mean, double& sd) {
+    mean = 0.0;
+    for (const double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    if (levels.members <= kProbeMembers) {
+      sd = 0.0;  // deterministic: the probe members agree within kDeterministicDb
+      return;
+    }
+    double ss = 0.0;
+    for (const double x : v) ss += (x - mean) * (x - mean);
+    sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
+  };
+  stats(sound, levels.sound_db, levels.sound_sd);
+  stats(haptic, levels.haptic_db, levels.haptic_sd);
+  return levels;
+}
+
+StrokeBudgetFigures CompareLevels(const StrokeLevels& run, const StrokeLevels& reference) {
+  auto se = [](double sd_a, int n_a, double sd_b, int n_b) {
+    return std::sqrt(sd_a * sd_a / std::max(n_a, 1) + sd_b * sd_b / std::max(n_b, 1));
+  };
+  auto diff = [](double a, double b) {
+    return std::isfinite(a) && std::isfinite(b) ? a - b
+           : a == b                             ? 0.0
+                                                : std::numeric_limits<double>::infinity();
+  };
+  return {diff(run.sound_db, reference.sound_db), diff(run.haptic_db, reference.haptic_db),
+          se(run.sound_sd, run.members, reference.sound_sd, reference.members),
+          se(run.haptic_sd, run.members, reference.haptic_sd, reference.members)};
 }
 
 StrokeReference MeasureStrokeReference(const synth::MaterialParams& material,
-                                       const BudgetStroke& stroke) {
+                                       const BudgetStroke& stroke, bool convergence) {
   StrokeReference ref;
   const auto fine = FineReference(material);
-  ref.fine = RenderBudgetStroke(fine, stroke);
-  for (const double change : {1e-12, -1e-12}) {
-    auto perturbed = fine;
-    perturbed.resonator.modes[0].mass_kg *= 1.0 + change;
-    const auto f = CompareLevels(RenderBudgetStroke(perturbed, stroke), ref.fine);
-    ref.floor.sound_db = std::max(ref.floor.sound_db, std::fabs(f.sound_db));
-    ref.floor.haptic_db = std::max(ref.floor.haptic_db, std::fabs(f.haptic_db));
-  }
+  ref.fine = MeasureStrokeLevels(fine, stroke);
+  if (!convergence) return ref;
+  auto coarser = fine;
+  coarser.impact.oversample = kConvergenceOversample;
+  ref.convergence = CompareLevels(MeasureStrokeLevels(coarser, stroke), ref.fine);
+  coarser.impact.oversample = 16;
+  ref.old_reference = CompareLevels(MeasureStrokeLevels(coarser, stroke), ref.fine);
   return ref;
 }
 
-bool StrokeReference::Meets(const StrokeBudgetFigures& f) const {
-  return std::fabs(f.sound_db) <= kLevelBudgetDb + floor.sound_db &&
-         std::fabs(f.haptic_db) <= kLevelBudgetDb + floor.haptic_db;
+bool MeetsLevelBudget(const StrokeBudgetFigures& f) {
+  return std::fabs(f.sound_db) <= kLevelBudgetDb + f.sound_se &&
+         std::fabs(f.haptic_db) <= kLevelBudgetDb + f.haptic_se;
 }
 
 }  // namespace sas::kiosk

@@ -44,6 +44,7 @@ bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
     return false;
   }
   params.impact.scheme = row->scheme;
+  params.impact.oversample = row->oversample;
   params.impact.target_contact_samples = row->target_contact_samples;
   params.impact.sustained_substeps = row->sustained_substeps;
   return true;
@@ -59,8 +60,9 @@ std::string ContactPolicyText(const synth::MaterialParams& params, bool from_ben
   }
   const int most = synth::ChooseContactOversample(impact, params.probe.mass_kg, 48000.0);
   if (impact.oversample > 0) {
-    std::snprintf(text, sizeof text, "%s, %d sub-steps per contact sample (fixed)",
-                  ContactSchemeName(impact.scheme), most);
+    std::snprintf(text, sizeof text, "%s, %d sub-steps per contact sample (fixed), %s",
+                  ContactSchemeName(impact.scheme), most,
+                  from_benchmark ? "chosen by contact_bench" : "set by the material file");
     return text;
   }
   std::snprintf(text, sizeof text,

@@ -24,6 +24,7 @@ struct ContactChoice {
   synth::ContactScheme scheme;
   double target_contact_samples;
   int sustained_substeps;
+  int oversample;  // > 0: this many sub-steps on every contact sample (then the two above are 0)
 };
 std::span<const ContactChoice> ContactChoices();
 

@@ -1,8 +1,8 @@
 // The contact policies the kiosk takes from its benchmark (files/contact_choice.h) against the
-// error budget (calibration/contact_budget.h): every shipped material with a row in the table
+// error budget (calibration/contact_budget.h): every shipped material has a row in the table and
 // meets it, impacts against the Lambert-W closed form and strokes against the fine-step
-// reference; and the budget is a real bar: a first-order scheme at the same sub-steps, or one rung
-// coarser where the ladder has one, misses it.
+// reference (ensemble means where a stroke is chaotic); and the budget is a real bar: a
+// first-order scheme at the same sub-steps, or the rung before on the ladder, misses it.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -17,9 +17,17 @@ namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kPhaseStride = 8;  // ~10x slower under the sanitizer
+// The stroke ensembles at ×64 take minutes per material there: the sanitizer build checks the
+// first material's, the optimised build every material's.
+constexpr bool kEveryMaterial = false;
 #else
 constexpr int kPhaseStride = 2;
+constexpr bool kEveryMaterial = true;
 #endif
+
+// The materials contact_bench --choose found no budget-meeting policy for within its cost
+// ceiling (glass: fixed x16 on every contact sample, four to five times the built-in policy).
+bool IsOverCostCeiling(const std::string& name) { return name == "glass"; }
 
 std::vector<kiosk::Material> ShippedMaterials() {
   for (const auto& dir : kiosk::MaterialSearchDirs("")) {
@@ -34,12 +42,13 @@ bool StrokesMeet(const synth::MaterialParams& params,
   bool ok = true;
   for (std::size_t i = 0; i < references.size(); ++i) {
     const auto& stroke = kiosk::BudgetStrokes()[i];
-    const auto f = kiosk::CompareLevels(kiosk::RenderBudgetStroke(params, stroke),
-                                        references[i].fine);
-    if (!references[i].Meets(f)) {
+    const auto f =
+        kiosk::CompareLevels(kiosk::MeasureStrokeLevels(params, stroke), references[i].fine);
+    if (!kiosk::MeetsLevelBudget(f)) {
       ok = false;
-      *why += stroke.Name() + ": sound " + std::to_string(f.sound_db) + " dB, vibration " +
-              std::to_string(f.haptic_db) + " dB; ";
+      *why += stroke.Name() + ": sound " + std::to_string(f.sound_db) + " ± " +
+              std::to_string(f.sound_se) + " dB, vibration " + std::to_string(f.haptic_db) +
+              " ± " + std::to_string(f.haptic_se) + " dB; ";
     }
   }
   return ok;
@@ -65,8 +74,12 @@ TEST_CASE(
     }
     CHECK(found);
   }
+  // Every shipped material runs a measured policy, except those whose cheapest budget-meeting
+  // policy is over the tool's cost ceiling (docs/contact-budget.md): they keep the built-in one.
+  // Once one gets a row, it must leave this list.
   for (const auto& m : materials) {
-    if (!m.contact_from_benchmark) WARN(m.name << ": no policy met the budget; built-in policy");
+    INFO(m.name);
+    CHECK(m.contact_from_benchmark != IsOverCostCeiling(m.name));
   }
 }
 
@@ -75,49 +88,49 @@ TEST_CASE(
     "closed form and the fine-step reference and a coarser one does not",
     "[dsp][render]") {
   int checked = 0;
-  for (const auto& m : ShippedMaterials()) {
-    if (!m.contact_from_benchmark) continue;
+  const auto materials = ShippedMaterials();
+  REQUIRE(!materials.empty());
+  for (const auto& m : materials) {
+    if (!kEveryMaterial && checked > 0) break;
     INFO(m.name << ": " << kiosk::ContactPolicyText(m.params, true));
     ++checked;
     const auto impact = kiosk::MeasureImpactBudget(m.params, kPhaseStride);
     INFO("worst impact error " << impact.worst_relative << " relative, " << impact.worst_budget_ratio
                                << "x the budget at " << impact.worst_speed_mps << " m/s");
-    CHECK(impact.Meets());
     std::vector<kiosk::StrokeReference> references;
     for (const auto& stroke : kiosk::BudgetStrokes()) {
       references.push_back(kiosk::MeasureStrokeReference(m.params, stroke));
     }
     std::string why;
-    CHECK(StrokesMeet(m.params, references, &why));
+    const bool meets = StrokesMeet(m.params, references, &why);
     INFO(why);
+    if (!m.contact_from_benchmark) {
+      // Left on the built-in policy: the docs say it misses the budget; if it met it, the tool
+      // would have chosen it (or a cheaper one) and the table would be stale.
+      CHECK_FALSE((impact.Meets() && meets));
+      continue;
+    }
+    CHECK(impact.Meets());
+    CHECK(meets);
 
     // Coarser: the first-order explicit scheme at the same sub-steps misses the impact budget.
-    kiosk::ContactPolicy policy{m.params.impact.scheme, m.params.impact.target_contact_samples,
-                                m.params.impact.sustained_substeps};
+    const auto policy = kiosk::PolicyOf(m.params);
     auto explicit_policy = policy;
     explicit_policy.scheme = synth::ContactScheme::kExplicitPassive;
     CHECK_FALSE(
         kiosk::MeasureImpactBudget(kiosk::WithPolicy(m.params, explicit_policy), kPhaseStride)
             .Meets());
-    // One rung down the ladder (fewer sub-steps per contact, or fewer held), where there is one.
-    const auto& targets = kiosk::TargetSamplesLadder();
-    const auto& held = kiosk::SustainedLadder();
-    for (std::size_t t = 1; t < targets.size(); ++t) {
-      if (targets[t] != policy.target_contact_samples) continue;
-      auto coarser = policy;
-      coarser.target_contact_samples = targets[t - 1];
+    // The rung before on the ladder, where there is one, misses the impact or a stroke budget.
+    const int index = kiosk::LadderIndex(policy);
+    CHECK(index >= 0);
+    if (index > 0) {
+      const auto coarser = kiosk::PolicyLadder(policy.scheme)[static_cast<std::size_t>(index - 1)];
+      INFO("the rung before: " << kiosk::PolicyName(coarser));
       const auto params = kiosk::WithPolicy(m.params, coarser);
       std::string coarser_why;
       CHECK_FALSE((kiosk::MeasureImpactBudget(params, kPhaseStride).Meets() &&
                    StrokesMeet(params, references, &coarser_why)));
     }
-    for (std::size_t h = 1; h < held.size(); ++h) {
-      if (held[h] != policy.sustained_substeps) continue;
-      auto coarser = policy;
-      coarser.sustained_substeps = held[h - 1];
-      std::string coarser_why;
-      CHECK_FALSE(StrokesMeet(kiosk::WithPolicy(m.params, coarser), references, &coarser_why));
-    }
   }
-  CHECK(checked > 0);
+  CHECK(checked == (kEveryMaterial ? static_cast<int>(materials.size()) : 1));
 }

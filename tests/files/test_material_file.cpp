@@ -296,15 +296,19 @@ TEST_CASE(
 
 TEST_CASE(
     "every shipped material runs the default contact scheme and meets 1e-4 restitution error "
-    "at 48 kHz with automatic oversampling at every one of 32 onset phases from 0.1 to 3 m/s",
+    "at 48 kHz with automatic oversampling or the benchmark's fixed count at every one of 32 "
+    "onset phases from 0.1 to 3 m/s",
     "[kiosk]") {
   // The default configuration against the Lambert-W closed form, through
-  // the engine's own kernel, with each material's probe mass and contact parameters.
+  // the engine's own kernel, with each material's probe mass and contact parameters. A fixed
+  // sub-step count only where the benchmark chose one (a pressed stick-slip contact needs sub-steps
+  // the automatic choice, made from the impact speed, does not give it).
   for (const auto& material : LoadMaterialDirectory(ShippedDir())) {
     const auto& impact = material.params.impact;
     const double mass = material.params.probe.mass_kg;
+    INFO(material.name);
     CHECK(impact.scheme == sas::synth::kDefaultContactScheme);
-    CHECK(impact.oversample == 0);
+    CHECK((impact.oversample == 0 || material.contact_from_benchmark));
     for (const double v_in : {0.1, 0.3, 1.0, 3.0}) {
       const auto exact = sas::synth::HuntCrossleyImpact(
           mass, impact.stiffness, impact.dissipation_s_per_m, impact.shape_alpha, v_in);
