@@ -586,6 +586,11 @@ namespace {
 
 // AdvanceBristleAt's body, inlined into the contact solves (a call, with its 80-byte result
 // returned through memory, sat on the Newton iteration's dependency chain).
+// kAtStart: the caller made `limits` with CacheStart(z0) for this very z0 (the contact solves,
+// whose every evaluation starts from the step's deflection), so the cache's check reduces to
+// whether the first piece starts at z0. The result is the same either way (a NaN z0, which fails
+// the check, recomputes α each time as the cache's NaN marker does).
+template <bool kAtStart = false>
 [[gnu::always_inline]] inline BristleStep StepBristle(const FrictionModel& model, double z0,
                                                       double du, const BristleLimits& limits) {
   BristleStep out;
@@ -626,7 +631,8 @@ namespace {
     }
   }
   // Elasto-plastic and plastic parts: exact exponential relaxation with α frozen per piece.
-  const bool start_known = limits.start_cached && limits.start_z == z0 && left == total;
+  const bool start_known =
+      (kAtStart || (limits.start_cached && limits.start_z == z0)) && left == total;
   for (int i = 0; i < 64 && left > 0.0; ++i) {
     double alpha = 1.0;
     if (i == 0 && start_known) {
@@ -782,7 +788,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
     double bristle_z1 = 0.0;
     auto evaluate = [&](double u) {  // f(u), F(f) and the residual r(u)
       last_u = u;
-      const BristleStep bristle = StepBristle(friction, in.z0, u, limits);
+      const BristleStep bristle = StepBristle<true>(friction, in.z0, u, limits);
       bristle_z1 = bristle.z1;
       f = FrictionStepForce(friction, in.z0, bristle, u, inv_h, in.noise_n);
       if (in.impact_on) ns = normal(in.free_dx + in.coupling * f);
@@ -800,7 +806,7 @@ ContactStepOutput SolveCoupled(const FrictionModel& friction, const ContactStepI
       const double dforce_dc = ns.dforce_dc;
       auto search = [&](double uu) {
         last_u = uu;
-        const BristleStep bristle = StepBristle(friction, in.z0, uu, limits);
+        const BristleStep bristle = StepBristle<true>(friction, in.z0, uu, limits);
         bristle_z1 = bristle.z1;
         f = FrictionStepForce(friction, in.z0, bristle, uu, inv_h, in.noise_n);
         const double force =
@@ -881,7 +887,7 @@ bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
     if (!(in.x0 + d > 0.0)) return false;  // opening: the general solve handles the clamp
     const NormalEval e = NormalForce(m, in.x0, v0, d, mu_h, f0, a, inv_x0);
     const double u = in.free_du + in.free_dx - d - probe_part * e.f;
-    const BristleStep b = StepBristle(friction, in.z0, u, limits);
+    const BristleStep b = StepBristle<true>(friction, in.z0, u, limits);
     const double f = FrictionStepForce(friction, in.z0, b, u, inv_h, in.noise_n);
     const double rho = in.free_dx + in.coupling * f - compliance * e.f - d;
     const double scale = std::fabs(d) + std::fabs(in.free_dx) + compliance * std::fabs(e.f) +
