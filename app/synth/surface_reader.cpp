@@ -44,7 +44,7 @@ void SurfaceReader::Prepare(const HeightFieldView& field) {
 }
 
 double SurfaceReader::CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi,
-                                  double half_px) const {
+                                  double half_px, CeilingMemo* memo) const {
   // The pixels a window of half-width half_px centred in the range can touch, with BoxMean's
   // clamping of the centre and shifting of the window at the edges, and one pixel to spare.
   const auto pixel_range = [&](double lo_m, double hi_m, int size, int* first, int* last) {
@@ -59,14 +59,20 @@ double SurfaceReader::CeilingOver(double x_lo, double x_hi, double y_lo, double 
   int x0 = 0, x1 = 0, y0 = 0, y1 = field_.height - 1;
   pixel_range(x_lo, x_hi, field_.width, &x0, &x1);
   if (field_.height > 1) pixel_range(y_lo, y_hi, field_.height, &y0, &y1);
+  const int tx0 = x0 / kTile, tx1 = x1 / kTile, ty0 = y0 / kTile, ty1 = y1 / kTile;
+  if (memo != nullptr && memo->tx0 == tx0 && memo->tx1 == tx1 && memo->ty0 == ty0 &&
+      memo->ty1 == ty1) {
+    return static_cast<double>(memo->highest);
+  }
   float highest = -std::numeric_limits<float>::infinity();
-  for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty) {
-    for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
+  for (int ty = ty0; ty <= ty1; ++ty) {
+    for (int tx = tx0; tx <= tx1; ++tx) {
       highest = std::max(
           highest, tile_max_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x_) +
                              static_cast<std::size_t>(tx)]);
     }
   }
+  if (memo != nullptr) *memo = {tx0, tx1, ty0, ty1, highest};
   return static_cast<double>(highest);
 }
 
@@ -141,8 +147,8 @@ SurfaceReader::RollGeometry SurfaceReader::Roll(double width_m, double ball_radi
   return g;
 }
 
-double SurfaceReader::RollCeiling(double x_m, double y_m, double width_m,
-                                  const RollGeometry& g) const {
+double SurfaceReader::RollCeiling(double x_m, double y_m, double width_m, const RollGeometry& g,
+                                  CeilingMemo* memo) const {
   // The ceiling is the highest point under the ball's track (its tiles), not the field's: on a
   // low or flat part of the field the scan stops after a point or two. (At least 0: BoxMean
   // reads 0 where it cannot average.)
@@ -150,7 +156,7 @@ double SurfaceReader::RollCeiling(double x_m, double y_m, double width_m,
   const double local =
       std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(g.r) && std::isfinite(half_px)
           ? CeilingOver(x_m - g.r * std::fabs(g.dx), x_m + g.r * std::fabs(g.dx),
-                        y_m - g.r * std::fabs(g.dy), y_m + g.r * std::fabs(g.dy), half_px)
+                        y_m - g.r * std::fabs(g.dy), y_m + g.r * std::fabs(g.dy), half_px, memo)
           : max_height_m_;
   return std::max(local, 0.0) + kBoxMeanSlack;
 }
@@ -210,6 +216,10 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
     t.direction_x = direction_x;
     t.direction_y = direction_y;
     t.geometry = Roll(width_m, ball_radius_m, direction_x, direction_y);
+    for (int k = 0; k <= t.geometry.half_count; ++k) {
+      const double s = k * t.geometry.ds;
+      t.lift[k] = std::sqrt(std::max(t.geometry.r * t.geometry.r - s * s, 0.0)) - t.geometry.r;
+    }
     for (double& v : t.value) v = std::numeric_limits<double>::infinity();
   } else {
     // The window's width in pixels along each axis (BoxMean: at least one, at most the field).
@@ -228,7 +238,7 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
   t.x_m = x_m;
   t.y_m = y_m;
   const RollGeometry& g = t.geometry;
-  const double ceiling = RollCeiling(x_m, y_m, width_m, g);
+  const double ceiling = RollCeiling(x_m, y_m, width_m, g, &t.ceiling);
   // Point index: 0 the centre, 2k - 1 at +k·ds, 2k at -k·ds.
   const auto read = [&](int k, int index, double s) {
     const double v = index > 0 && index == 2 * k ? BoxMean(x_m - s * g.dx, y_m - s * g.dy, width_m)
@@ -237,19 +247,18 @@ double SurfaceReader::FeltTracked(double x_m, double y_m, double width_m, double
     t.drift_at[index] = t.drift;
     return v;
   };
-  const auto lift_at = [&](double s) { return std::sqrt(std::max(g.r * g.r - s * s, 0.0)) - g.r; };
   double h = -1e300;
   int best = -1;
   const int first = t.best <= 2 * g.half_count ? t.best : -1;
   if (first >= 0) {
     const int k = (first + 1) / 2;
     const double s = k * g.ds;
-    h = read(k, first, s) + lift_at(s);
+    h = read(k, first, s) + t.lift[k];
     best = first;
   }
   for (int k = 0; k <= g.half_count; ++k) {
     const double s = k * g.ds;
-    const double lift = lift_at(s);
+    const double lift = t.lift[k];
     if (ceiling + lift <= std::max(h, threshold)) break;
     for (int index = k == 0 ? 0 : 2 * k - 1; index <= 2 * k; ++index) {
       if (index == first) continue;

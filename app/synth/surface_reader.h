@@ -44,7 +44,14 @@ class SurfaceReader {
   double Integral(double px, double py) const;  // ∫∫ over [0,px]×[0,py] (pixel units)
   // Highest field value any box window centred in [x_lo, x_hi] x [y_lo, y_hi] (metres) can
   // read, from the tile table (an upper bound of every BoxMean there, up to its rounding).
-  double CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi, double half_px) const;
+  // `memo` (FeltTracked's): the tile range last scanned and its maximum, reused while the range
+  // stays the same (a ball moves a few um a sample, a tile is 8 pixels): the same value.
+  struct CeilingMemo {
+    int tx0 = -1, tx1 = -1, ty0 = -1, ty1 = -1;
+    float highest = 0.0f;
+  };
+  double CeilingOver(double x_lo, double x_hi, double y_lo, double y_hi, double half_px,
+                     CeilingMemo* memo = nullptr) const;
 
   // A rolling ball's points and the bound on what they read (Felt's comment).
   struct RollGeometry {
@@ -54,7 +61,8 @@ class SurfaceReader {
   RollGeometry Roll(double width_m, double ball_radius_m, double direction_x,
                     double direction_y) const;
   // Highest box mean along the track of a ball centred at (x_m, y_m), plus BoxMean's rounding.
-  double RollCeiling(double x_m, double y_m, double width_m, const RollGeometry& g) const;
+  double RollCeiling(double x_m, double y_m, double width_m, const RollGeometry& g,
+                     CeilingMemo* memo = nullptr) const;
 
   // The roll's points along the ball: k = 0 .. half_count (<= 64) on each side of the centre.
   static constexpr int kMaxRollPoints = 129;
@@ -67,6 +75,8 @@ class SurfaceReader {
     double width_m = 0.0, radius_m = 0.0, direction_x = 0.0, direction_y = 0.0;  // the inputs
     RollGeometry geometry{};  // Roll's for them (hypot and divisions once, not every sample)
     double drift = 0.0;
+    CeilingMemo ceiling{};
+    double lift[kMaxRollPoints / 2 + 1] = {};  // each point's lift, sqrt(r² - s²) - r
     int best = -1;  // the point that gave the maximum there (-1: none)
     double value[kMaxRollPoints] = {};
     double drift_at[kMaxRollPoints] = {};
