@@ -458,6 +458,14 @@ shot_check screen_staff_token3 "staff_token3.png" \
   "$e2e_tool" matches "$out/staff_token3.png" $(texture_pictures "$staff_key")
 shot_check screen_staff_token3_after_upgrade "staff_token3_upgraded.png" \
   "$e2e_tool" matches "$out/staff_token3_upgraded.png" $(texture_pictures "$staff_key")
+# The control: the same check on the screen of the wrong token (4) must fail.
+if [ ! -s "$out/staff_control_token4.png" ]; then
+  row FAIL screen_staff_check_control "no staff_control_token4.png"
+elif control=$("$e2e_tool" matches "$out/staff_control_token4.png" $(texture_pictures "$staff_key") 2>&1); then
+  row FAIL screen_staff_check_control "the staff texture's check passed on token 4's screen: $(echo "$control" | paste -sd';' -)"
+else
+  row PASS screen_staff_check_control "the staff texture's check fails on token 4's screen, as it must: $(echo "$control" | head -2 | paste -sd';' -)"
+fi
 capture="$share/out/capture.f32"
 shot_check sound_stroke "capture of the stroke" \
   "$check" stroke "$capture" "$(value mark_stroke_down)" "$(value mark_stroke_lift)" "$(value mark_stroke_quiet)"

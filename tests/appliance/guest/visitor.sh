@@ -518,6 +518,18 @@ else
   judge staff_texture_not_refused "journal: no 'staff texture ... refused' warning" \
     bash -c "! journalctl -u $unit --since @$since -o cat --no-pager | grep -q 'staff texture .* refused'"
   staff_on_token3 staff_texture_token3 staff_token3
+  # The control: the same two checks against the wrong token (4, cracked ground) must fail, so a
+  # pass above is the staff texture's and not a check that passes whatever the screen shows (the
+  # host judges the screenshot against the staff picture and must find no match).
+  mark_journal
+  gpio pull sas-tokens 3 down
+  wait_journal 'showing cracked_ground'
+  judge staff_texture_check_control "token 4 instead of 3: journal: showing cracked_ground, no 'showing $staff_key'" \
+    bash -c "! journalctl -u $unit --since @$since -o cat --no-pager | grep -q 'showing $staff_key'"
+  shot staff_control_token4 matches cracked_ground
+  mark_journal
+  gpio pull sas-tokens 3 up
+  wait_journal "showing $default_key"
   # Conductive ink chatters: token 1 placed with a burst of edges shorter than the debounce, then
   # lifted, then token 2 placed cleanly. The kiosk shows each once: the journal between the two
   # marks holds exactly bubble_wrap, wooden_board, broken_glass.
