@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "common/text.h"
+#include "calibration/population_cache.h"
 #include "calibration/population_levels.h"
 #include "calibration/texture_levels.h"
 #include "cue_voice.h"
@@ -267,6 +268,57 @@ cv::Mat ScanToScreen(const ScanGrid& grid, double step_mm, double* range_mm) {
   return out;
 }
 
+// A grey PNG (or any image OpenCV reads) of heights: 8 or 16 bits, its brightness the height
+// (black 0, the format's white the full scale). As 0..1 floats; empty, with `why`, when it is no
+// height map: unreadable, in colour (grey stored as RGB is taken), too small, or another depth.
+cv::Mat ReadHeightMap(const std::string& path, std::string* why) {
+  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (raw.empty()) {
+    *why = "not a PNG, JPEG or TIFF image OpenCV can read";
+    return {};
+  }
+  if (raw.depth() != CV_8U && raw.depth() != CV_16U) {
+    *why = "a height map has 8 or 16 bits per sample";
+    return {};
+  }
+  std::vector<cv::Mat> planes;
+  cv::split(raw, planes);
+  if (planes.size() >= 3) {
+    // Grey saved as RGB is grey; colour is no height (which channel would it be?).
+    if (cv::countNonZero(planes[0] != planes[1]) > 0 || cv::countNonZero(planes[1] != planes[2]) > 0) {
+      *why = "in colour: a height map is grey, its brightness the height";
+      return {};
+    }
+  }
+  if (raw.cols < kMinPhotoWidthPx || raw.rows < kMinPhotoHeightPx) {
+    *why = std::to_string(raw.cols) + " x " + std::to_string(raw.rows) +
+           " px is too small (at least " + std::to_string(kMinPhotoWidthPx) + " x " +
+           std::to_string(kMinPhotoHeightPx) + "): blown up, its relief would be the blur's";
+    return {};
+  }
+  // 8 bits to 16 exactly (x 257: 255 -> 65535), then one scale for both, so that the same map
+  // at either depth gives the same picture to the last bit. An alpha plane is left out.
+  cv::Mat sixteen = planes[0];
+  if (raw.depth() == CV_8U) planes[0].convertTo(sixteen, CV_16U, 257.0);
+  cv::Mat heights;
+  sixteen.convertTo(heights, CV_32F, 1.0 / 65535.0);
+  return heights;
+}
+
+// The map's middle at the screen's aspect, scaled to the screen, as an 8-bit picture spanning its
+// heights (the kiosk reads the relief from the picture's brightness, as for a scan); `range`: the
+// part of the full scale they span.
+cv::Mat HeightMapToScreen(const cv::Mat& heights, double* range) {
+  const cv::Mat screen = ToScreen(heights);
+  double lo = 0.0, hi = 0.0;
+  cv::minMaxLoc(screen, &lo, &hi);
+  *range = hi - lo;
+  cv::Mat out;
+  screen.convertTo(out, CV_8U, hi > lo ? 255.0 / (hi - lo) : 0.0,
+                   hi > lo ? -255.0 * lo / (hi - lo) : 0.0);
+  return out;
+}
+
 // --------------------------------------------------------------------------- texture.toml
 
 struct NewTexture {
@@ -326,17 +378,30 @@ void WriteFile(const fs::path& path, const std::string& text) {
 // token's shipped texture, as the kiosk will hold it (the per-stroke matching refers to the
 // loaded textures' levels); token 0: the mean of its medians on each of the four tokens. The new
 // texture's row is last.
+// The shipped rows hold only their medians, from the cache in `cache_dir` when it has them
+// (population_cache.h; "": measured); what was done is said on `out`.
 std::vector<kiosk::PopulationLevels> MeasureAgainstShipped(const std::string& path, int strokes,
                                                            unsigned seed, bool shipped_too,
-                                                           int token) {
+                                                           int token, const std::string& cache_dir,
+                                                           std::FILE* out) {
   const std::vector<std::string> shipped = kiosk::FindTextureFiles();
   const auto population = kiosk::VisitorPopulation(strokes, seed);
   const kiosk::KioskConfig defaults;
   std::vector<kiosk::PopulationLevels> rows;
   if (shipped_too) {
+    const auto medians = kiosk::ShippedPopulationMedians(shipped, strokes, seed, cache_dir);
     for (std::size_t t = 0; t < shipped.size(); ++t) {
-      rows.push_back(kiosk::MeasurePopulation(shipped, t, population, defaults));
+      kiosk::PopulationLevels row;
+      row.name = medians.names[t];
+      row.sound_median = medians.sound[t];
+      row.haptic_median = medians.haptic[t];
+      rows.push_back(row);
     }
+    const std::string how = medians.from_cache         ? "from the cache " + medians.cache_file
+                            : medians.cache_file.empty() ? std::string("measured (not cached)")
+                                                         : "measured, cached in " + medians.cache_file;
+    std::fprintf(out, "  the shipped textures' levels over %d strokes (seed %u): %s\n", strokes,
+                 seed, how.c_str());
   }
   kiosk::PopulationLevels mine;
   double sound = 0.0, haptic = 0.0;
@@ -417,7 +482,7 @@ std::string FindEspeak() {
 // --------------------------------------------------------------------------- new
 
 struct NewOptions {
-  std::string out_dir, photo, scan, material = "wood", config, espeak, cues_from;
+  std::string out_dir, photo, scan, height_map, material = "wood", config, espeak, cues_from;
   std::vector<std::string> names, descriptions;
   double relief_mm = 0.4;
   double scan_step_mm = 0.1;
@@ -430,6 +495,7 @@ struct NewOptions {
   int population = 600;
   int token = 0;  // the token it is meant for (0: any)
   bool force = false;
+  bool no_cache = false;
 };
 
 int RunNew(const NewOptions& o, std::FILE* out, std::FILE* err) {
@@ -437,7 +503,9 @@ int RunNew(const NewOptions& o, std::FILE* out, std::FILE* err) {
     std::fprintf(err, "sketch-a-scratch texture new: %s\n", why.c_str());
     return kExitRuntimeError;
   };
-  if (o.photo.empty() == o.scan.empty()) return fail("give one of --photo or --scan");
+  if (o.photo.empty() + o.scan.empty() + o.height_map.empty() != 2) {
+    return fail("give one of --photo, --height-map or --scan");
+  }
   NewTexture t;
   const fs::path folder = fs::absolute(o.out_dir).lexically_normal();
   t.key = folder.filename().string();
@@ -519,6 +587,23 @@ int RunNew(const NewOptions& o, std::FILE* out, std::FILE* err) {
     t.height_scale_mm = o.relief_mm;
     t.source = "the photo " + fs::path(o.photo).filename().string() + " (" +
                std::to_string(photo.cols) + " x " + std::to_string(photo.rows) + " px)";
+  } else if (!o.height_map.empty()) {
+    std::string why;
+    const cv::Mat map = ReadHeightMap(o.height_map, &why);
+    if (map.empty()) return fail(o.height_map + ": " + why);
+    double range = 0.0;
+    WritePng(folder / "picture.png", HeightMapToScreen(map, &range));
+    // White in the map is --relief-mm; the picture spans the heights the map uses.
+    t.relief_mm = o.relief_mm * range;
+    if (!(t.relief_mm >= 0.001)) {
+      return fail(o.height_map + ": the height map is flat (its heights span " +
+                  Fixed(t.relief_mm * 1e3, 2) + " um at --relief-mm " + Fixed(o.relief_mm, 2) + ")");
+    }
+    t.brightness = true;
+    t.height_scale_mm = t.relief_mm;
+    t.source = "the height map " + fs::path(o.height_map).filename().string() + " (" +
+               std::to_string(map.cols) + " x " + std::to_string(map.rows) + " px, white " +
+               Fixed(o.relief_mm, 3) + " mm)";
   } else {
     std::vector<std::string> problems;
     grid = ReadScanCsv(o.scan, &problems);
@@ -562,7 +647,9 @@ int RunNew(const NewOptions& o, std::FILE* out, std::FILE* err) {
   std::fprintf(out, "  gains %.2f dB sound, %.2f dB vibration; trimming on %d visitor strokes...\n",
                t.gains.sound_gain_db, t.gains.haptic_gain_db, o.population);
   std::fflush(out);
-  auto rows = MeasureAgainstShipped(toml.string(), o.population, kTrimSeed, true, o.token);
+  const std::string cache_dir = o.no_cache ? std::string() : kiosk::CacheDir();
+  auto rows =
+      MeasureAgainstShipped(toml.string(), o.population, kTrimSeed, true, o.token, cache_dir, out);
   double mean_sound = 0.0, mean_haptic = 0.0;
   for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
     mean_sound += rows[i].sound_median / static_cast<double>(rows.size() - 1);
@@ -579,7 +666,9 @@ int RunNew(const NewOptions& o, std::FILE* out, std::FILE* err) {
     t.gains.haptic_trim_db = std::clamp(t.gains.haptic_trim_db + off_haptic, -12.0, 12.0);
     WriteFile(toml, TextureToml(t));
     rows.back() =
-        MeasureAgainstShipped(toml.string(), o.population, kTrimSeed, false, o.token).back();
+        MeasureAgainstShipped(toml.string(), o.population, kTrimSeed, false, o.token, cache_dir,
+                              out)
+            .back();
   }
   t.gains_note = "# Calibrated by `texture new` as the shipped textures are (calibration/"
                  "texture_levels.h); the trims put its\n# median over " +
@@ -670,8 +759,11 @@ std::vector<std::string> CheckTextureFolder(const std::string& folder_arg,
     }
   }
   // The picture: readable, and large enough for the screen.
+  int picture_width = 0, picture_height = 0;
   try {
     const auto picture = surface::LoadGrayImage(texture.picture_path);
+    picture_width = picture.width;
+    picture_height = picture.height;
     if (picture.width < kMinPictureWidthPx || picture.height < kMinPictureHeightPx) {
       at(KeyLine(root, "", "picture"), "picture",
          fs::path(texture.picture_path).filename().string() + " is " +
@@ -685,6 +777,24 @@ std::vector<std::string> CheckTextureFolder(const std::string& folder_arg,
   if (!fs::is_regular_file(texture.height_map_path, error)) {
     at(KeyLine(root, "", "height_map"), "height_map",
        fs::path(texture.height_map_path).filename().string() + " is missing");
+  } else {
+    // The height map is the picture's relief pixel for pixel (texture new derives it): one of
+    // another size, or no grey image, belongs to another picture.
+    const std::string name = fs::path(texture.height_map_path).filename().string();
+    const cv::Mat height = cv::imread(texture.height_map_path, cv::IMREAD_UNCHANGED);
+    if (height.empty()) {
+      at(KeyLine(root, "", "height_map"), "height_map", name + " is no image OpenCV can read");
+    } else if (height.channels() != 1 || (height.depth() != CV_8U && height.depth() != CV_16U)) {
+      at(KeyLine(root, "", "height_map"), "height_map",
+         name + " is not a grey 8- or 16-bit image");
+    } else if (picture_width > 0 &&
+               (height.cols != picture_width || height.rows != picture_height)) {
+      at(KeyLine(root, "", "height_map"), "height_map",
+         name + " is " + std::to_string(height.cols) + " x " + std::to_string(height.rows) +
+             " px, the picture " + std::to_string(picture_width) + " x " +
+             std::to_string(picture_height) +
+             ": they are one surface (make the texture again with texture new)");
+    }
   }
   // The material: the folder's own file first, then the shipped ones.
   try {
@@ -744,7 +854,8 @@ std::vector<std::string> CheckTextureFolder(const std::string& folder_arg,
 namespace {
 
 // The figures a curator looks at, for a folder that passed its check.
-void PrintFigures(const std::string& folder, int strokes, int token, std::FILE* out) {
+void PrintFigures(const std::string& folder, int strokes, int token, const std::string& cache_dir,
+                  std::FILE* out) {
   const std::string toml = (fs::path(folder) / "texture.toml").string();
   const auto loaded = surface::LoadTexture(toml);
   const auto& file = loaded.file;
@@ -782,7 +893,7 @@ void PrintFigures(const std::string& folder, int strokes, int token, std::FILE* 
                  file.probe.penetration_mm, file.relief_mm);
   }
   if (strokes > 0) {
-    const auto rows = MeasureAgainstShipped(toml, strokes, 7, true, token);
+    const auto rows = MeasureAgainstShipped(toml, strokes, 7, true, token, cache_dir, out);
     double mean_sound = 0.0, mean_haptic = 0.0;
     for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
       mean_sound += rows[i].sound_median / static_cast<double>(rows.size() - 1);
@@ -867,10 +978,14 @@ int RunTextureCommand(const std::vector<std::string>& args, std::FILE* out, std:
       "texture");
   app.require_subcommand(1);
   NewOptions n;
-  auto* make = app.add_subcommand("new", "make a texture folder from a photo or a scan");
+  auto* make =
+      app.add_subcommand("new", "make a texture folder from a photo, a height map or a scan");
   make->add_option("folder", n.out_dir, "the texture folder to make; its name is the texture's")
       ->required();
   make->add_option("--photo", n.photo, "a PNG or JPEG photograph, any size (cropped to 16:9)");
+  make->add_option("--height-map", n.height_map,
+                   "a grey PNG of heights, 8 or 16 bits (white: --relief-mm), any size (cropped to "
+                   "16:9); its brightness is the relief and the picture");
   make->add_option("--scan", n.scan,
                    "a CSV of heights in mm: one row (a line scan) or a grid, --scan-step-mm apart");
   kiosk::AddNumberOption(*make, "--scan-step-mm", n.scan_step_mm, 0.001, 100.0,
@@ -888,7 +1003,7 @@ int RunTextureCommand(const std::vector<std::string>& args, std::FILE* out, std:
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   kiosk::AddNumberOption(*make, "--relief-mm", n.relief_mm, 0.01, 10.0,
-                         "a photo's strongest ridge height (default 0.4 mm)");
+                         "a photo's strongest ridge height, a height map's white (default 0.4 mm)");
   kiosk::AddNumberOption(*make, "--width-mm", n.width_mm, 0.05, 20.0,
                          "the probe's default width (default 0.3 mm)");
   kiosk::AddNumberOption(*make, "--penetration-mm", n.penetration_mm, 0.0, 5.0,
@@ -908,11 +1023,16 @@ int RunTextureCommand(const std::vector<std::string>& args, std::FILE* out, std:
                    "(default: the mean over the four)")
       ->check(CLI::Range(1, 4));
   make->add_flag("--force", n.force, "replace what the folder holds");
+  make->add_flag("--no-cache", n.no_cache,
+                 "measure the shipped textures' levels afresh (else kept in $XDG_CACHE_HOME/"
+                 "sketch-a-scratch, or ~/.cache/sketch-a-scratch, keyed on the program and files)");
 
   std::string folder, config_path, staff_dir, preview_out;
   int figures_strokes = 100;
   int token = 0;
+  bool check_no_cache = false;
   auto* check = app.add_subcommand("check", "check a texture folder and print its figures");
+  check->add_flag("--no-cache", check_no_cache, "measure the shipped textures' levels afresh");
   check->add_option("folder", folder, "the texture folder")->required();
   check->add_option("--config", config_path, "the kiosk.toml whose languages it must speak");
   check->add_option("--token", token, "the token (1-4) its level is measured on (default: each)")
@@ -947,7 +1067,8 @@ int RunTextureCommand(const std::vector<std::string>& args, std::FILE* out, std:
         return kExitRuntimeError;
       }
       std::fprintf(out, "%s: no problems\n", folder.c_str());
-      PrintFigures(folder, figures_strokes, token, out);
+      PrintFigures(folder, figures_strokes, token,
+                   check_no_cache ? std::string() : kiosk::CacheDir(), out);
       return kExitOk;
     }
     if (preview->parsed()) {

@@ -3,13 +3,15 @@
 // photograph or a scan to a calibrated, spoken texture the kiosk shows on a token.
 //
 //   new      a photo (PNG or JPEG, any size: cropped to the display's aspect from the middle and
-//            scaled to 1920 x 1080) or a scan (CSV of heights in mm: one line of a profilometer
-//            or vibration scan, or a grid; the paper's scan -> profile), a material (a shipped
+//            scaled to 1920 x 1080), a height map (a grey 8- or 16-bit PNG, its brightness the
+//            relief, cropped and scaled alike) or a scan (CSV of heights in mm: one line of a
+//            profilometer or vibration scan, or a grid; the paper's scan -> profile), a material (a shipped
 //            one's name or a material file, copied into the folder), the name and description in
 //            every language the kiosk speaks -> a texture folder: texture.toml, picture.png,
 //            height.png (the relief the kiosk derives), its [gains] and [levels] calibrated as the
 //            shipped textures' are (calibration/texture_levels.h), then a trim that puts its
-//            median over the visitor population at the shipped textures' mean (population_levels.h),
+//            median over the visitor population at the shipped textures' mean (population_levels.h;
+//            the shipped textures' medians come from a cache when it holds them: population_cache.h),
 //            and cues/<language>/<name>_name.wav and _description.wav (espeak-ng with the
 //            language's voice, or the curator's recordings with --cues-from).
 //   check    every problem as "<file>:<line>: <key>: <what>" (exit 1), else the figures a curator

@@ -209,18 +209,31 @@ auto RealOrOff(double KioskConfig::*member, double min, double max) {
 
 // A texture's folder name: lower-case letters, digits and '_' (it names cue files and counters,
 // and may never leave the textures folder).
+bool IsTextureName(const std::string& value) {
+  return !value.empty() && value.size() <= 64 && std::all_of(value.begin(), value.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
 auto TokenTexture(std::size_t token) {
   return [=](const toml::node& node, KioskConfig& config, const std::string& where) {
     const auto value = node.value<std::string>();
     if (!node.is_string() || !value) throw ConfigError(where + "expected a string");
-    const bool ok = !value->empty() && value->size() <= 64 &&
-                    std::all_of(value->begin(), value->end(), [](char c) {
-                      return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-                    });
-    if (!ok) {
+    if (!IsTextureName(*value)) {
       throw ConfigError(where + "expected a texture folder name (lower-case letters, digits, _)");
     }
     config.token_textures[token] = *value;
+  };
+}
+
+// A texture folder's name; whether the kiosk shows it is judged with [textures] (below).
+auto DefaultTexture() {
+  return [](const toml::node& node, KioskConfig& config, const std::string& where) {
+    const auto value = node.value<std::string>();
+    if (!node.is_string() || !value || !IsTextureName(*value)) {
+      throw ConfigError(where + "expected a texture folder name (lower-case letters, digits, _)");
+    }
+    config.default_texture = *value;
   };
 }
 
@@ -260,11 +273,10 @@ const std::vector<KeySpec>& Schema() {
       {"gains", "ambient_quiet_dbfs", Real(&KioskConfig::ambient_quiet_dbfs, -120.0, 0.0)},
       {"gains", "ambient_rate_db_per_s", Real(&KioskConfig::ambient_rate_db_per_s, 0.01, 20.0)},
       {"session", "idle_timeout_s", Real(&KioskConfig::idle_timeout_s, 5.0, 3600.0)},
-      // One of the four kiosk textures (the engine's folder names): a typo used to be accepted
-      // and the kiosk silently showed its first texture instead.
-      {"session", "default_texture",
-       Choice(&KioskConfig::default_texture,
-              {"bubble_wrap", "broken_glass", "wooden_board", "cracked_ground"})},
+      // One of the four kiosk textures (the engine's folder names) or a staff texture a token
+      // shows: checked against [textures] once the whole file is read (a typo used to be
+      // accepted and the kiosk silently showed its first texture instead).
+      {"session", "default_texture", DefaultTexture()},
       {"session", "describe_after_rest_s", Real(&KioskConfig::describe_after_rest_s, 0.0, 10.0)},
       {"attract", "passive_stroke", Flag(&KioskConfig::attract_passive_stroke)},
       {"attract", "invitation_interval_s", Real(&KioskConfig::invitation_interval_s, 0.0, 3600.0)},
@@ -302,7 +314,8 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
                       ": syntax error: " + std::string(error.description()));
   }
   KioskConfig config;     // filled on a copy: a bad file changes nothing
-  std::string where_max;  // for the cross-key check below
+  std::string where_max;  // for the cross-key checks below
+  std::string where_default;
   for (const auto& [table_key, table_node] : root) {
     const std::string table_name(table_key.str());
     const auto* table = table_node.as_table();
@@ -322,6 +335,22 @@ KioskConfig ParseKioskConfig(const std::string& text, const std::string& source_
       if (dotted == "gains.ambient_max_db" ||
           (where_max.empty() && dotted == "gains.ambient_min_db"))
         where_max = where;
+      if (dotted == "session.default_texture") where_default = where;
+    }
+  }
+  // The texture shown with no token: a shipped one (shown by its token's texture when a staff
+  // texture took that token) or one a token shows, a staff texture too.
+  {
+    const std::vector<std::string> shipped = {"bubble_wrap", "broken_glass", "wooden_board",
+                                              "cracked_ground"};
+    const auto& tokens = config.token_textures;
+    if (std::find(shipped.begin(), shipped.end(), config.default_texture) == shipped.end() &&
+        std::find(tokens.begin(), tokens.end(), config.default_texture) == tokens.end()) {
+      std::string listed;
+      for (const auto& name : shipped) listed += name + ", ";
+      throw ConfigError(where_default + "\"" + config.default_texture +
+                        "\" is no texture the kiosk shows (" + listed +
+                        "or one a [textures] token_N names)");
     }
   }
   if (config.ambient_min_db > config.ambient_max_db) {

@@ -217,10 +217,17 @@ void KioskEngine::LoadTextures() {
       found == texture_keys_.end() ? 0 : static_cast<int>(found - texture_keys_.begin());
   if (found == texture_keys_.end()) {
     // A curator's texture took the default's token: the idle screen shows what that token shows.
+    // A staff texture named as the default but refused: what its token shows instead.
     const auto shipped = KioskTextureNames();
+    const auto& tokens = options_.config.token_textures;
     const auto place = std::find(shipped.begin(), shipped.end(), options_.config.default_texture);
-    const auto token = static_cast<std::size_t>(place - shipped.begin());
-    if (place != shipped.end() && token < token_texture_.size() && token_texture_[token] >= 0) {
+    auto token = static_cast<std::size_t>(place - shipped.begin());
+    if (place == shipped.end()) {
+      token = static_cast<std::size_t>(
+          std::find(tokens.begin(), tokens.end(), options_.config.default_texture) -
+          tokens.begin());
+    }
+    if (token < token_texture_.size() && token_texture_[token] >= 0) {
       default_texture_ = token_texture_[token];
     }
   }

@@ -84,6 +84,8 @@ broken "a language the kiosk speaks left out" texture.toml '^\[descriptions\]' d
 broken "a description of two sentences" texture.toml '^it = \"Un letto' descriptions.it "sed -i 's/^it = \"Un letto.*/it = \"Un letto. Di fiume secco.\"/' texture.toml"
 broken "a picture too small" texture.toml '^picture = ' picture "convert -size 320x180 xc:gray50 picture.png"
 broken "a picture that is no image" texture.toml '^picture = ' picture "echo 'not an image' >picture.png"
+broken "a height map of another size than the picture" texture.toml '^height_map = ' height_map "convert -size 960x540 xc:gray50 -depth 16 height.png"
+broken "a height map in colour" texture.toml '^height_map = ' height_map "convert -size 1920x1080 xc:red height.png"
 broken "a NaN in a scan" scan.csv 3 height "printf '0.1, 0.2, 0.3, 0.1, 0.2, 0.3, 0.1, 0.2\n0.1, 0.2, 0.3, 0.1, 0.2, 0.3, 0.1, 0.2\n0.1, nan, 0.3, 0.1, 0.2, 0.3, 0.1, 0.2\n' >scan.csv; sed -i 's/^relief_mm = /scan = \"scan.csv\"\nrelief_mm = /' texture.toml"
 broken "a scan row of another length" scan.csv 2 height "printf '0.1 0.2 0.3 0.1 0.2 0.3 0.1 0.2\n0.1 0.2 0.3\n' >scan.csv; sed -i 's/^relief_mm = /scan = \"scan.csv\"\nrelief_mm = /' texture.toml"
 broken "a material out of range" soil_copy.toml '^mass_kg = ' probe.mass_kg "sed 's/^mass_kg = .*/mass_kg = 500.0/' '$textures/materials/dry_soil.toml' >soil_copy.toml; sed -i 's/^material = .*/material = \"soil_copy\"/' texture.toml"

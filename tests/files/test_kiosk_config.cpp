@@ -391,6 +391,35 @@ TEST_CASE("the staff chord needs two modifiers and a key, and its hold time is b
              Catch::Contains("staff.toml:2: staff.chord_hold_s: 60 is out of range"));
 }
 
+TEST_CASE("kiosk.toml: the default texture is a shipped one or one a token shows, a staff texture too, else an error at its line",
+          "[kiosk]") {
+  const KioskConfig staff = ParseKioskConfig(
+      "[session]\ndefault_texture = \"river_pebbles\"\n[textures]\ntoken_2 = \"river_pebbles\"\n",
+      "k.toml");
+  CHECK(staff.default_texture == "river_pebbles");
+  // A shipped name stays valid when a staff texture took its token (the idle screen then shows
+  // that token's texture).
+  CHECK(ParseKioskConfig("[session]\ndefault_texture = \"cracked_ground\"\n[textures]\ntoken_4 = "
+                         "\"river_pebbles\"\n",
+                         "k.toml")
+            .default_texture == "cracked_ground");
+  // A staff texture no token shows: the kiosk could not show it with no token.
+  CHECK_THROWS_WITH(
+      ParseKioskConfig("[textures]\ntoken_2 = \"river_pebbles\"\n\n[session]\ndefault_texture = "
+                       "\"sea_stones\"\n",
+                       "k.toml"),
+      Catch::Contains("k.toml:5: session.default_texture: \"sea_stones\" is no texture the kiosk "
+                      "shows"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[session]\n\ndefault_texture = \"wodden_board\"\n", "k.toml"),
+                    Catch::Contains("k.toml:3: session.default_texture: \"wodden_board\" is no "
+                                    "texture the kiosk shows"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[session]\ndefault_texture = \"../etc\"\n", "k.toml"),
+                    Catch::Contains("k.toml:2: session.default_texture: expected a texture folder "
+                                    "name"));
+  CHECK_THROWS_WITH(ParseKioskConfig("[session]\ndefault_texture = 3\n", "k.toml"),
+                    Catch::Contains("k.toml:2: session.default_texture:"));
+}
+
 TEST_CASE("kiosk.toml: the textures table names each token's texture, and a name that could leave the textures folder is an error at its line",
           "[kiosk]") {
   const KioskConfig config =

@@ -116,6 +116,32 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "a staff texture named as the default texture shows with no token; refused, the default is "
+    "what its token shows instead",
+    "[kiosk]") {
+  sas::test::TempDir staff;
+  CopyShipped(staff.path() / "textures", "riverbed");
+  auto options = Options(staff);
+  options.config.token_textures[1] = "riverbed";
+  options.config.default_texture = "riverbed";
+  {
+    sas::kiosk::KioskEngine engine(options);
+    REQUIRE(engine.textures().size() == 4);
+    REQUIRE(engine.textures()[1].key == "riverbed");
+    CHECK(engine.default_texture() == 1);
+    CHECK(engine.surface().texture == 1);
+  }
+  // Refused (its picture gone): token 2 shows the shipped broken glass, and so does the idle
+  // screen, not the first texture.
+  fs::remove(staff.path() / "textures" / "riverbed" / "picture.png");
+  sas::platform::DefaultLogger().SetEchoToStderr(false);
+  sas::kiosk::KioskEngine engine(options);
+  REQUIRE(engine.textures().size() == 4);
+  CHECK(engine.textures()[1].key == "broken_glass");
+  CHECK(engine.default_texture() == 1);
+}
+
 TEST_CASE("a token naming no texture anywhere shows the shipped texture of its place", "[kiosk]") {
   sas::test::TempDir staff;
   const auto tokens = sas::kiosk::ResolveTokenTextures(

@@ -428,6 +428,43 @@ restarts_end=$(systemctl show -p NRestarts --value "$unit")
 judge no_unexpected_restart "NRestarts at boot $restarts0, before SIGSTOP $restarts_before_stop, now $restarts_end (2 expected: SIGSEGV, SIGSTOP)" \
   test "$restarts_end" -eq $((restarts0 + 2))
 
+# --- 8a. a curator's texture (made on the host by `texture new`), installed as the staff guide
+# says: `texture install --token 3` copies it into <staff_dir>/textures/ and sets kiosk.toml's
+# [textures] token_3. The kiosk takes it at its next start, the restart of step 8 (no restart of
+# its own: each costs the VM a minute or more). Token 3's shipped texture is the default one, so
+# the idle screen shows the curator's texture from then on.
+staff_key=$(cat "$share/staff/key" 2>/dev/null)
+staff_dir=/etc/sketch-a-scratch/textures
+default_key=wooden_board
+if [ -n "$staff_key" ] &&
+   sketch-a-scratch texture install "$share/staff/$staff_key" --token 3 >"$out/texture-install.log" 2>&1; then
+  default_key=$staff_key
+  pass staff_texture_installed "$(tr '\n' ' ' <"$out/texture-install.log")$(du -sk "$staff_dir/$staff_key" | cut -f1) kB, $(grep '^token_3' /etc/sketch-a-scratch/kiosk.toml)"
+else
+  fail staff_texture_installed "texture install of '${staff_key:-none}' failed: $(tr '\n' ' ' <"$out/texture-install.log" 2>/dev/null)"
+fi
+staff_sha() { (cd "$staff_dir" && find "$staff_key" -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum) 2>/dev/null; }
+sha_staff=$(staff_sha)
+# staff_on_token3 <check> <screenshot>: token 2 placed, then token 3 beside it: the kiosk switches
+# to the curator's texture (journal) and the host sees its picture on the screen; then both lifted.
+staff_on_token3() {
+  local check=$1 name=$2
+  mark_journal
+  gpio pull sas-tokens 1 down
+  wait_journal 'showing broken_glass'
+  mark_journal
+  gpio pull sas-tokens 2 down
+  judge "$check" "token 3 on GPIO22 while token 2 is down: journal: showing $staff_key" \
+    wait_journal "showing $staff_key"
+  shot "$name" matches "$staff_key"
+  mark_journal
+  gpio pull sas-tokens 2 up
+  wait_journal 'showing broken_glass'
+  mark_journal
+  gpio pull sas-tokens 1 up
+  wait_journal "showing $default_key"
+}
+
 # --- 8. the token switches and the record button on a kernel GPIO chip (gpio-sim, built by the
 # host for this kernel), as on a box wired to a GPIO header: the staff edit names the chip by its
 # label and the lines by their names, then restarts the kiosk, while a visitor is already
@@ -477,7 +514,22 @@ else
   judge gpio_token_lifted_back "token 4 lifted, token 2 still down: showing broken_glass" wait_journal 'showing broken_glass'
   mark_journal
   gpio pull sas-tokens 1 up
-  judge gpio_tokens_lifted "every token lifted: showing wooden_board" wait_journal 'showing wooden_board'
+  judge gpio_tokens_lifted "every token lifted: showing $default_key" wait_journal "showing $default_key"
+  judge staff_texture_not_refused "journal: no 'staff texture ... refused' warning" \
+    bash -c "! journalctl -u $unit --since @$since -o cat --no-pager | grep -q 'staff texture .* refused'"
+  staff_on_token3 staff_texture_token3 staff_token3
+  # The control: the same two checks against the wrong token (4, cracked ground) must fail, so a
+  # pass above is the staff texture's and not a check that passes whatever the screen shows (the
+  # host judges the screenshot against the staff picture and must find no match).
+  mark_journal
+  gpio pull sas-tokens 3 down
+  wait_journal 'showing cracked_ground'
+  judge staff_texture_check_control "token 4 instead of 3: journal: showing cracked_ground, no 'showing $staff_key'" \
+    bash -c "! journalctl -u $unit --since @$since -o cat --no-pager | grep -q 'showing $staff_key'"
+  shot staff_control_token4 matches cracked_ground
+  mark_journal
+  gpio pull sas-tokens 3 up
+  wait_journal "showing $default_key"
   # Conductive ink chatters: token 1 placed with a burst of edges shorter than the debounce, then
   # lifted, then token 2 placed cleanly. The kiosk shows each once: the journal between the two
   # marks holds exactly bubble_wrap, wooden_board, broken_glass.
@@ -485,14 +537,14 @@ else
   gpio chatter sas-tokens 0 6
   wait_journal 'showing bubble_wrap'
   gpio pull sas-tokens 0 up
-  wait_journal 'showing wooden_board'
+  wait_journal "showing $default_key"
   gpio pull sas-tokens 1 down
   wait_journal 'showing broken_glass'
   shown=$(journalctl -u "$unit" --since "@$since" -o cat --no-pager | sed -n 's/.*showing \([a-z_]*\).*/\1/p' | paste -sd' ')
   judge gpio_token_chatter "chattering placement of token 1, then lift, then token 2: shown $shown" \
-    test "$shown" = "bubble_wrap wooden_board broken_glass"
+    test "$shown" = "bubble_wrap $default_key broken_glass"
   gpio pull sas-tokens 1 up
-  wait_journal 'showing wooden_board'
+  wait_journal "showing $default_key"
   # The record button on the fifth line: pressed for a quarter of a second and released, as a
   # visitor does (longer than the 30 ms debounce, shorter than the 1.2 s hold that cancels). Two
   # writes with nothing between them made a press shorter than the debounce on a fast moment,
@@ -508,6 +560,7 @@ fi
 config=/etc/sketch-a-scratch/kiosk.toml
 sha_config=$(sha256sum <"$config")
 cp "$counters" "$out/counters-before-upgrade.toml"
+mark_journal
 apt-get install -y -q "$share/pkg/newer.deb" >"$out/upgrade.log" 2>&1
 judge upgrade_installed "$(dpkg-query -W -f='${Version}' sketch-a-scratch)" \
   test "$(dpkg-query -W -f='${Version}' sketch-a-scratch)" = "$(cat "$share/pkg/newer.version")"
@@ -516,14 +569,25 @@ judge upgrade_keeps_counters "sessions $(visits "$out/counters-before-upgrade.to
   test "$(visits "$counters")" -ge "$(visits "$out/counters-before-upgrade.toml")"
 until_true "kiosk active after the upgrade" active
 judge upgrade_restarts_kiosk "state $(systemctl show -p ActiveState --value $unit)" active
+# The curator's texture survives the upgrade: its files unchanged, and token 3 still shows it
+# once the upgraded kiosk has opened the GPIO lines (tokens placed before would be lifted).
+judge upgrade_keeps_staff_texture "$staff_dir/$staff_key: files' sha256 $(staff_sha | cut -c1-12) (before ${sha_staff:0:12})" \
+  test -n "$sha_staff" -a "$(staff_sha)" = "$sha_staff"
+if [ -f "$share/bin/gpio-sim.ko" ] && wait_journal 'ok: GPIO sas-tokens'; then
+  staff_on_token3 staff_texture_token3_after_upgrade staff_token3_upgraded
+else
+  fail staff_texture_token3_after_upgrade "the upgraded kiosk opened no GPIO tokens"
+fi
 apt-get remove -y -q sketch-a-scratch >"$out/remove.log" 2>&1
 judge remove_keeps_config "$config" test -f "$config"
 judge remove_keeps_counters "$counters" test -f "$counters"
+judge remove_keeps_staff_texture "$staff_dir/$staff_key" test "$(staff_sha)" = "$sha_staff"
 judge remove_removes_binary "/usr/bin/sketch-a-scratch" test ! -e /usr/bin/sketch-a-scratch
 judge remove_removes_metrics_link "node-exporter publishes no stopped kiosk's metrics" \
   test ! -e /var/lib/prometheus/node-exporter/sketch_a_scratch.prom -a ! -L /var/lib/prometheus/node-exporter/sketch_a_scratch.prom
 judge remove_stops_kiosk "state $(systemctl show -p ActiveState --value $unit)" bash -c '! systemctl is-active -q sketch-a-scratch'
 apt-get purge -y -q sketch-a-scratch >"$out/purge.log" 2>&1
+judge purge_removes_staff_textures "$staff_dir" test -n "$sha_staff" -a ! -e "$staff_dir"
 judge purge_removes_config "/etc/sketch-a-scratch" test ! -e /etc/sketch-a-scratch
 judge purge_removes_state "/var/lib/sketch-a-scratch" test ! -e /var/lib/sketch-a-scratch
 judge purge_removes_user "sas-kiosk" bash -c '! getent passwd sas-kiosk >/dev/null'
