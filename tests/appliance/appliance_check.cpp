@@ -281,8 +281,9 @@ int Cue(const std::string& capture, double t0, double t1, const std::vector<std:
   // loaded host the kiosk and arecord run ~20 xruns a second. Each of the 20 name cues (4
   // textures, 5 languages) put into a capture with 30 random 5-20 ms cuts or gaps a second
   // scored 0.66-0.84 against at most 0.64 for the best other, two of them (German and French
-  // "bubble wrap") under the 0.1 margin, and 0.76-0.99 against at most 0.68 without cuts; the former block correlation let another cue of the same voice score up to
-  // 0.85 and failed 10 of those 20. A capture of noise alone scores under the bar.
+  // "bubble wrap") under the 0.1 margin, and 0.76-0.99 against at most 0.68 without cuts; the
+  // former block correlation let another cue of the same voice score up to 0.85 and failed 10
+  // of those 20. A capture of noise alone scores under the bar.
   if (wanted < 0.6) return std::printf("FAIL: the wanted cue is not heard\n"), 1;
   if (wanted < best_other + 0.1) return std::printf("FAIL: another cue matches as well\n"), 1;
   return 0;
