@@ -918,6 +918,18 @@ void InstallFolder(const fs::path& from, const fs::path& into) {
   const fs::path old = into.parent_path() / (tag + ".old");
   fs::remove_all(fresh);
   fs::copy(from, fresh, fs::copy_options::recursive);
+  // The kiosk runs as its own user: whatever the curator's umask or the source's modes, the
+  // folder must be readable by it (and nothing in it executable).
+  const auto readable_dir = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                            fs::perms::others_read | fs::perms::others_exec;
+  const auto readable_file = fs::perms::owner_read | fs::perms::owner_write |
+                             fs::perms::group_read | fs::perms::others_read;
+  fs::permissions(into.parent_path(), readable_dir, fs::perm_options::add);
+  fs::permissions(fresh, readable_dir, fs::perm_options::replace);
+  for (const auto& entry : fs::recursive_directory_iterator(fresh)) {
+    fs::permissions(entry.path(), entry.is_directory() ? readable_dir : readable_file,
+                    fs::perm_options::replace);
+  }
   std::error_code error;
   const bool had = fs::exists(into, error);
   if (had) fs::rename(into, old);

@@ -108,5 +108,21 @@ elif [ -e "$staff/textures/$key" ] || [ -n "$(ls -A "$staff")" ] && [ -n "$(ls -
 else
   echo "ok: install of a broken folder exits 1 and installs nothing ($(tail -1 "$work/install.log"))"
 fi
+# A curator with a private umask (and a folder only they can read) installs a texture the kiosk's
+# own user can still read: every directory 755, every file 644.
+chmod -R go-rwx "$good"
+(umask 077 && "$app" texture install "$good" --staff-dir "$staff" >"$work/install_good.log" 2>&1)
+rc=$?
+if [ $rc != 0 ]; then
+  sed 's/^/    /' "$work/install_good.log"
+  fail "install of the good folder under umask 077: exit $rc"
+else
+  modes=$(cd "$staff" && find textures -printf '%y %m %p\n' | sort)
+  if bad=$(echo "$modes" | awk '($1 == "d" && $2 != "755") || ($1 == "f" && $2 != "644")') && [ -n "$bad" ]; then
+    fail "installed under umask 077, not readable by the kiosk's user: $(echo "$bad" | head -3 | paste -sd';' -)"
+  else
+    echo "ok: installed under umask 077, $(echo "$modes" | wc -l) entries all 755 (folders) or 644 (files)"
+  fi
+fi
 echo "$n broken folders checked, $failures failures"
 [ $failures = 0 ]
