@@ -8,7 +8,10 @@
 # pen display with pressure and tilt, a uinput keyboard and a uhid MCP2221A token board
 # (tests/appliance/fake_devices.cpp). tests/appliance/guest/visitor.sh plays the visitor, the staff
 # and the installer inside; this script takes the screenshots it asks for (QEMU monitor
-# screendump) and checks the screen, the loopback capture, the journal and the guest's disk.
+# screendump) and checks the screen, the loopback capture, the journal and the guest's disk. The
+# staff's part includes a curator's texture: made here with the built program's `texture new`
+# from a photo-like picture, installed in the guest for token 3 with `texture install`, shown on
+# token 3 before and after the package upgrade, kept by remove and gone after purge.
 #
 #   sudo bash tests/appliance/boot-test.sh [--build-dir DIR] [--out DIR] [--cache DIR] [--docs]
 #                                          [--load N]
