@@ -117,8 +117,8 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "a staff texture named as the default texture shows with no token; refused, the default is "
-    "what its token shows instead",
+    "a staff texture named as the default texture shows with no token, and when it is refused "
+    "the default is what its token shows instead",
     "[kiosk]") {
   sas::test::TempDir staff;
   CopyShipped(staff.path() / "textures", "riverbed");
