@@ -41,6 +41,14 @@ sas::kiosk::KioskEngineOptions Options(const sas::test::TempDir& staff) {
   return options;
 }
 
+// Options whose staff folder holds the staff texture "riverbed", shown on token `token` (1-4).
+sas::kiosk::KioskEngineOptions OptionsWithRiverbed(const sas::test::TempDir& staff, int token) {
+  CopyShipped(staff.path() / "textures", "riverbed");
+  auto options = Options(staff);
+  options.config.token_textures[static_cast<std::size_t>(token - 1)] = "riverbed";
+  return options;
+}
+
 bool Warned(const std::string& what) {
   for (const auto& line : sas::platform::DefaultLogger().Recent()) {
     if (line.level == sas::platform::LogLevel::kWarn && line.message.find(what) != std::string::npos)
@@ -56,10 +64,7 @@ TEST_CASE(
     "idle screen when it took the default texture's token",
           "[kiosk]") {
   sas::test::TempDir staff;
-  CopyShipped(staff.path() / "textures", "riverbed");
-  auto options = Options(staff);
-  options.config.token_textures[2] = "riverbed";
-  sas::kiosk::KioskEngine engine(options);
+  sas::kiosk::KioskEngine engine(OptionsWithRiverbed(staff, 3));
   REQUIRE(engine.textures().size() == 4);
   CHECK(engine.textures()[0].key == "bubble_wrap");
   CHECK(engine.textures()[2].key == "riverbed");
@@ -101,10 +106,8 @@ TEST_CASE(
   for (const auto& c : cases) {
     INFO(c.name);
     sas::test::TempDir staff;
-    CopyShipped(staff.path() / "textures", "riverbed");
+    const auto options = OptionsWithRiverbed(staff, 3);
     c.damage(staff.path() / "textures" / "riverbed");
-    auto options = Options(staff);
-    options.config.token_textures[2] = "riverbed";
     log.Clear();
     sas::kiosk::KioskEngine engine(options);
     REQUIRE(engine.textures().size() == 4);
@@ -121,9 +124,7 @@ TEST_CASE(
     "the default is what its token shows instead",
     "[kiosk]") {
   sas::test::TempDir staff;
-  CopyShipped(staff.path() / "textures", "riverbed");
-  auto options = Options(staff);
-  options.config.token_textures[1] = "riverbed";
+  auto options = OptionsWithRiverbed(staff, 2);
   options.config.default_texture = "riverbed";
   {
     sas::kiosk::KioskEngine engine(options);
