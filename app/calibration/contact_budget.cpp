@@ -70,7 +70,13 @@ const std::vector<int>& FixedLadder() {
 std::vector<ContactPolicy> PolicyLadder(synth::ContactScheme scheme) {
   std::vector<ContactPolicy> ladder;
   for (const double t : TargetSamplesLadder()) {
-    for (const int h : SustainedLadder()) ladder.push_back({scheme, t, h, 0});
+    for (const int h : SustainedLadder()) ladder.push_back({scheme, t, h, 0, false});
+  }
+  // A floor of 1 is no floor (the cap rung above).
+  for (const double t : TargetSamplesLadder()) {
+    for (const int h : SustainedLadder()) {
+      if (h > 1) ladder.push_back({scheme, t, h, 0, true});
+    }
   }
   for (const int n : FixedLadder()) ladder.push_back({scheme, 0.0, 0, n});
   return ladder;
@@ -83,7 +89,8 @@ int LadderIndex(const ContactPolicy& policy) {
     if (policy.oversample > 0 ? r.oversample == policy.oversample
                               : r.oversample == 0 &&
                                     r.target_contact_samples == policy.target_contact_samples &&
-                                    r.sustained_substeps == policy.sustained_substeps) {
+                                    r.sustained_substeps == policy.sustained_substeps &&
+                                    r.pressed_floor == policy.pressed_floor) {
       return static_cast<int>(i);
     }
   }
@@ -95,15 +102,16 @@ std::string PolicyName(const ContactPolicy& policy) {
   if (policy.oversample > 0) {
     std::snprintf(text, sizeof text, "fixed x%d", policy.oversample);
   } else {
-    std::snprintf(text, sizeof text, "%g / %d", policy.target_contact_samples,
-                  policy.sustained_substeps);
+    std::snprintf(text, sizeof text, "%g / %d%s", policy.target_contact_samples,
+                  policy.sustained_substeps, policy.pressed_floor ? " floor" : "");
   }
   return text;
 }
 
 ContactPolicy PolicyOf(const synth::MaterialParams& material) {
   return {material.impact.scheme, material.impact.target_contact_samples,
-          material.impact.sustained_substeps, material.impact.oversample};
+          material.impact.sustained_substeps, material.impact.oversample,
+          material.impact.pressed_floor};
 }
 
 synth::MaterialParams WithPolicy(const synth::MaterialParams& material,
@@ -113,6 +121,7 @@ synth::MaterialParams WithPolicy(const synth::MaterialParams& material,
   m.impact.oversample = policy.oversample;
   m.impact.target_contact_samples = policy.oversample > 0 ? 0.0 : policy.target_contact_samples;
   m.impact.sustained_substeps = policy.oversample > 0 ? 0 : policy.sustained_substeps;
+  m.impact.pressed_floor = policy.oversample == 0 && policy.pressed_floor;
   return m;
 }
 
@@ -122,6 +131,7 @@ synth::MaterialParams FineReference(const synth::MaterialParams& material) {
   m.impact.oversample = kReferenceOversample;
   m.impact.target_contact_samples = 0.0;
   m.impact.sustained_substeps = 0;
+  m.impact.pressed_floor = false;
   return m;
 }
 
@@ -171,7 +181,7 @@ const std::vector<BudgetStroke>& BudgetStrokes() {
 }
 
 StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const BudgetStroke& stroke,
-                                int reps, double start_offset_m) {
+                                int reps, double start_offset_m, bool count_substeps) {
   const auto& field = Grating();
   const double relief = surface::ReliefM(field);
   synth::ProbeCommand down;
@@ -213,6 +223,16 @@ StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const Bud
     result.sound_energy = sound;
     result.haptic_energy = haptic;
   };
+  if (count_substeps) {
+    scene.Reset();
+    for (long f = 0; f < frames; ++f) {
+      scene.Process(f == 0 ? &down : nullptr, f == 0 ? 1 : 0,
+                    out.data() + 2 * static_cast<std::size_t>(f), 1);
+      const auto state = scene.probe_state();
+      result.substeps += state.active ? state.substeps : 0;
+    }
+    result.samples = static_cast<double>(frames);
+  }
   if (reps <= 1) {
     const double t0 = ThreadCpuSeconds();
     render();

@@ -44,16 +44,19 @@ inline constexpr int kProbeMembers = 4;
 inline constexpr double kDeterministicDb = 1e-3;
 
 // The automatic setting's policy (ImpactParams: scheme, target_contact_samples,
-// sustained_substeps), or a fixed sub-step count on every contact sample (oversample > 0).
+// sustained_substeps, pressed_floor), or a fixed sub-step count on every contact sample
+// (oversample > 0).
 struct ContactPolicy {
   synth::ContactScheme scheme = synth::kDefaultContactScheme;
   double target_contact_samples = 0.0;
   int sustained_substeps = 0;
   int oversample = 0;
+  bool pressed_floor = false;
 };
-// The rungs the bench tries, coarsest first: every (sub-steps per contact, held) pair, then the
-// fixed counts (a held count caps a pressed contact's sub-steps but does not raise them: a rub
-// whose friction needs sub-steps at walking closing speeds gets them only from a fixed count).
+// The rungs the bench tries, coarsest first: every (sub-steps per contact, held) pair with the
+// held count a cap, then the same pairs with it also a floor while friction acts (a rub whose
+// friction needs sub-steps at walking closing speeds gets them there: a cap does not raise a
+// slowly closing contact's count), then the fixed counts on every contact sample.
 const std::vector<double>& TargetSamplesLadder();
 const std::vector<int>& SustainedLadder();
 const std::vector<int>& FixedLadder();
@@ -61,7 +64,7 @@ const std::vector<int>& FixedLadder();
 std::vector<ContactPolicy> PolicyLadder(synth::ContactScheme scheme);
 // The index of `policy` in PolicyLadder(policy.scheme), or -1.
 int LadderIndex(const ContactPolicy& policy);
-std::string PolicyName(const ContactPolicy& policy);  // "136 / 4" or "fixed x4"
+std::string PolicyName(const ContactPolicy& policy);  // "136 / 4", "34 / 8 floor" or "fixed x4"
 ContactPolicy PolicyOf(const synth::MaterialParams& material);
 
 synth::MaterialParams WithPolicy(const synth::MaterialParams& material, const ContactPolicy& policy);
@@ -88,9 +91,15 @@ struct StrokeRender {
   double sound_energy = 0.0;  // Σ y² over the measured span, channel 1
   double haptic_energy = 0.0;  // channel 2
   double cpu_s = 0.0;          // thread CPU time of the render (best of `reps`, 1 if reps <= 1)
+  // Contact sub-steps summed over every sample of the render (with `count_substeps`: a second,
+  // frame-by-frame pass, the same output), and the samples: the work a policy asks for, which,
+  // unlike CPU time, does not move with the machine's load.
+  double substeps = 0.0;
+  double samples = 0.0;
 };
 StrokeRender RenderBudgetStroke(const synth::MaterialParams& material, const BudgetStroke& stroke,
-                                int reps = 1, double start_offset_m = 0.0);
+                                int reps = 1, double start_offset_m = 0.0,
+                                bool count_substeps = false);
 
 // The levels (dB of the energies) of a stroke's ensemble: member i starts i · 10 nm further on,
 // runs at speed × (1 + i · 1e-6) and has the first modal mass × (1 + i · 1e-12) (a wide rub

@@ -41,12 +41,14 @@ bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
     params.impact.scheme = synth::kDefaultContactScheme;
     params.impact.target_contact_samples = 0.0;
     params.impact.sustained_substeps = 0;
+    params.impact.pressed_floor = false;
     return false;
   }
   params.impact.scheme = row->scheme;
   params.impact.oversample = row->oversample;
   params.impact.target_contact_samples = row->target_contact_samples;
   params.impact.sustained_substeps = row->sustained_substeps;
+  params.impact.pressed_floor = row->pressed_floor;
   return true;
 }
 
@@ -67,9 +69,10 @@ std::string ContactPolicyText(const synth::MaterialParams& params, bool from_ben
   }
   std::snprintf(text, sizeof text,
                 "%s, adaptive 1-%d sub-steps at 48 kHz (%g per contact at 1 m/s, %d held "
-                "pressed), %s",
+                "pressed%s), %s",
                 ContactSchemeName(impact.scheme), most, synth::ContactTargetSamples(impact),
                 synth::SustainedContactSubsteps(impact),
+                impact.pressed_floor ? ", at least that while rubbing" : "",
                 from_benchmark ? "chosen by contact_bench" : "built-in (not in the benchmark's table)");
   return text;
 }

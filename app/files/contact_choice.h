@@ -25,6 +25,7 @@ struct ContactChoice {
   double target_contact_samples;
   int sustained_substeps;
   int oversample;  // > 0: this many sub-steps on every contact sample (then the two above are 0)
+  bool pressed_floor;  // the held count is also a pressed, rubbing contact's fewest
 };
 std::span<const ContactChoice> ContactChoices();
 

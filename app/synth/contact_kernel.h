@@ -60,8 +60,10 @@ struct ContactKernelConfig {
   // speeds up to sqrt(level_speed_sq[L]) (ContactSubstepsForSpeed); the finest level, any speed.
   bool adaptive = false;
   std::array<double, kMaxSubstepLevels> level_speed_sq{};
-  // The finest level a sustained contact may use (SustainedContactSubsteps sub-steps at most).
+  // The finest level a sustained contact may use (SustainedContactSubsteps sub-steps at most),
+  // and the coarsest it may use while friction acts (ImpactParams::pressed_floor; else level 0).
   int sustained_level = kMaxSubstepLevels - 1;
+  int pressed_floor_level = 0;
 
   double rate_hz = 48000.0;       // 1 / period_s
   double inv_probe_mass = 100.0;  // 1 / probe_mass_kg
@@ -92,6 +94,7 @@ struct ContactKernelConfig {
         sustained_level = level;
       }
     }
+    pressed_floor_level = params.pressed_floor ? sustained_level : 0;
   }
 };
 
@@ -204,7 +207,10 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
     }
     // A sustained contact (pressed at the start of the sample, a force acting in the last one) is
     // not an impact: kSustainedContactSubsteps in contact.h.
-    if (touched_before && x_start > 0.0) needed = std::min(needed, config.sustained_level);
+    if (touched_before && x_start > 0.0) {
+      needed = std::min(needed, config.sustained_level);
+      if (friction_on) needed = std::max(needed, config.pressed_floor_level);
+    }
     // Hold the level over one compression: re-chosen when the contact starts closing again.
     const bool closing = xdot > 0.0;
     if (closing && !probe.closing) probe.held_level = needed;

@@ -213,3 +213,56 @@ TEST_CASE(
   CHECK(most > 1);
   CHECK(most <= kSustainedContactSubsteps);
 }
+
+TEST_CASE(
+    "adaptive oversampling with the pressed floor: a pen dragged slowly over a plate gets the held "
+    "count on every pressed sample while friction acts, and one sub-step when it rolls",
+    "[dsp][render]") {
+  MaterialParams m;
+  m.resonator.mode_count = 3;
+  m.resonator.modes[0] = ModeParams{337.0, 1.2, 0.34, 0.5};
+  m.resonator.modes[1] = ModeParams{683.0, 0.6, 0.54, 0.8};
+  m.resonator.modes[2] = ModeParams{1004.0, 0.4, 1.1, -0.5};
+  m.probe.mass_kg = 0.005;
+  m.impact.enabled = true;
+  m.impact.stiffness = 1e8;
+  m.impact.shape_alpha = 1.5;
+  m.impact.dissipation_s_per_m = 0.15;
+  m.impact.oversample = 0;
+  m.impact.sustained_substeps = 8;
+  m.friction = test::MetalFriction();
+  // Counts of the sub-steps a settled pen sliding at 3 cm/s gets, for each sample in contact.
+  auto slide = [&](bool floor, ProbeStyle style) {
+    MaterialParams params = m;
+    params.impact.pressed_floor = floor;
+    Scene scene;
+    scene.Init(kFs);
+    scene.Prepare(params, OutputParams{}, HeightFieldView{});
+    REQUIRE(scene.contact_oversample() >= 8);
+    ProbeCommand down;
+    down.tip_down = true;
+    down.landing_speed_mps = 0.3;
+    down.normal_force_n = 1.0;
+    down.style = style;
+    std::vector<float> out(2);
+    scene.Process(&down, 1, out.data(), 1);
+    for (int n = 0; n < 48000; ++n) scene.Process(nullptr, 0, out.data(), 1);
+    ProbeCommand moving = down;
+    moving.velocity_mps = 0.03;
+    scene.Process(&moving, 1, out.data(), 1);
+    std::vector<int> counts(16, 0);
+    for (int n = 0; n < 12000; ++n) {
+      scene.Process(nullptr, 0, out.data(), 1);
+      const SceneProbeState s = scene.probe_state();
+      REQUIRE(s.compression_m > 0.0);  // the pen stays on the surface
+      ++counts[static_cast<std::size_t>(std::min(s.substeps, 15))];
+    }
+    return counts;
+  };
+  const auto capped = slide(false, ProbeStyle::kScrape);
+  CHECK(capped[1] == 12000);  // a cap: the slowly closing contact keeps one
+  const auto floored = slide(true, ProbeStyle::kScrape);
+  CHECK(floored[8] == 12000);
+  const auto rolled = slide(true, ProbeStyle::kRoll);  // no friction: the impact rule alone
+  CHECK(rolled[1] == 12000);
+}
