@@ -327,4 +327,12 @@ bool MeetsLevelBudget(const StrokeBudgetFigures& f) {
          std::fabs(f.haptic_db) <= kLevelBudgetDb + f.haptic_se;
 }
 
+bool NoFurtherOff(const StrokeBudgetFigures& f, const StrokeBudgetFigures& baseline) {
+  auto allowed = [](double base_db, double base_se) {
+    return std::fabs(base_db) <= kLevelBudgetDb + base_se ? kLevelBudgetDb : std::fabs(base_db);
+  };
+  return std::fabs(f.sound_db) <= allowed(baseline.sound_db, baseline.sound_se) + f.sound_se &&
+         std::fabs(f.haptic_db) <= allowed(baseline.haptic_db, baseline.haptic_se) + f.haptic_se;
+}
+
 }  // namespace sas::kiosk

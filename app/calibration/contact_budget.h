@@ -135,6 +135,9 @@ StrokeReference MeasureStrokeReference(const synth::MaterialParams& material,
 // The budget's test of one stroke: |difference of means| <= kLevelBudgetDb + its standard error,
 // sound and vibration.
 bool MeetsLevelBudget(const StrokeBudgetFigures& f);
+// Whether `f` is as close to the reference as `baseline`, channel by channel: within the budget
+// where the baseline is, and no further off (plus f's standard error) where it is not.
+bool NoFurtherOff(const StrokeBudgetFigures& f, const StrokeBudgetFigures& baseline);
 
 double ThreadCpuSeconds();
 

@@ -52,7 +52,12 @@ bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
   return true;
 }
 
-std::string ContactPolicyText(const synth::MaterialParams& params, bool from_benchmark) {
+std::string ContactPolicyText(const synth::MaterialParams& params, bool from_benchmark,
+                              bool budget_met) {
+  const char* chosen = !from_benchmark ? nullptr
+                       : budget_met
+                           ? "chosen by contact_bench"
+                           : "chosen by contact_bench, as close as the built-in (budget not met)";
   const auto& impact = params.impact;
   char text[256];
   if (!impact.enabled) {
@@ -64,7 +69,7 @@ std::string ContactPolicyText(const synth::MaterialParams& params, bool from_ben
   if (impact.oversample > 0) {
     std::snprintf(text, sizeof text, "%s, %d sub-steps per contact sample (fixed), %s",
                   ContactSchemeName(impact.scheme), most,
-                  from_benchmark ? "chosen by contact_bench" : "set by the material file");
+                  from_benchmark ? chosen : "set by the material file");
     return text;
   }
   std::snprintf(text, sizeof text,
@@ -73,7 +78,7 @@ std::string ContactPolicyText(const synth::MaterialParams& params, bool from_ben
                 ContactSchemeName(impact.scheme), most, synth::ContactTargetSamples(impact),
                 synth::SustainedContactSubsteps(impact),
                 impact.pressed_floor ? ", at least that while rubbing" : "",
-                from_benchmark ? "chosen by contact_bench" : "built-in (not in the benchmark's table)");
+                from_benchmark ? chosen : "built-in (not in the benchmark's table)");
   return text;
 }
 

@@ -26,6 +26,9 @@ struct ContactChoice {
   int sustained_substeps;
   int oversample;  // > 0: this many sub-steps on every contact sample (then the two above are 0)
   bool pressed_floor;  // the held count is also a pressed, rubbing contact's fewest
+  // false: no policy met the error budget within the tool's cost ceiling, and this one is the
+  // first as close to the fine-step reference as the built-in policy (docs/contact-budget.md).
+  bool budget_met;
 };
 std::span<const ContactChoice> ContactChoices();
 
@@ -36,7 +39,9 @@ const ContactChoice* FindContactChoice(std::string_view name, const synth::Mater
 bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params);
 
 // One line naming the contact scheme and sub-steps a material runs, e.g. "discrete_gradient,
-// adaptive 1-4 sub-steps (12 per contact at 1 m/s, 4 held), chosen by contact_bench".
-std::string ContactPolicyText(const synth::MaterialParams& params, bool from_benchmark);
+// adaptive 1-4 sub-steps (12 per contact at 1 m/s, 4 held), chosen by contact_bench"; with
+// `budget_met` false, "... chosen by contact_bench, as close as the built-in (budget not met)".
+std::string ContactPolicyText(const synth::MaterialParams& params, bool from_benchmark,
+                              bool budget_met = true);
 
 }  // namespace sas::kiosk

@@ -31,6 +31,9 @@ struct Material {
   // The file asked for the benchmark's contact choice and the table has this material's row
   // (files/contact_choice.h).
   bool contact_from_benchmark = false;
+  // ... and that row meets the error budget (false: none did within the tool's cost ceiling; the
+  // row is the policy as close to the reference as the built-in one).
+  bool contact_budget_met = false;
 };
 
 // Highest mode frequency a material file may hold: 0.45 of the kiosk's 48 kHz rate. The synth drops

@@ -137,7 +137,10 @@ std::string ContactLine(const KioskEngine& engine) {
     const auto& p = t.material.params;
     const int most = synth::ChooseContactOversample(p.impact, p.probe.mass_kg, 48000.0);
     text += " " + t.key + " " + ContactSchemeName(p.impact.scheme) + " x1-" +
-            std::to_string(most) + (t.material.contact_from_benchmark ? ";" : " (built-in);");
+            std::to_string(most) +
+            (!t.material.contact_from_benchmark ? " (built-in);"
+             : t.material.contact_budget_met    ? ";"
+                                                : " (budget not met);");
   }
   if (text.back() == ';') text.pop_back();
   return text;

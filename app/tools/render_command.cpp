@@ -231,7 +231,8 @@ void RenderBareScene(const RenderOptions& options, const Gesture& gesture,
   if (material_name.empty()) material_name = "wood";
   const Material material = FindMaterial(material_name, MaterialSearchDirs(options.materials_dir));
   summary.material_file = material.name;
-  summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark);
+  summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark,
+                                               material.contact_budget_met);
   const surface::HeightField field = LoadProfile(profile);
   const double fs_hz = options.sample_rate_hz;
 
@@ -384,7 +385,8 @@ void RenderThroughKiosk(const RenderOptions& options, const Gesture& gesture,
     const auto& material =
         engine.textures()[static_cast<std::size_t>(engine.default_texture())].material;
     summary.material_file = material.name;
-    summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark);
+    summary.contact_policy = ContactPolicyText(material.params, material.contact_from_benchmark,
+                                               material.contact_budget_met);
   }
 
   // A gesture off the screen is not an error (the kiosk clamps the pen to the picture) but worth

@@ -87,6 +87,7 @@ struct Options {
   bool choose = false;  // --choose: the contact policy per material (contact_choice.h)
   std::string table = SAS_SOURCE_DIR "/app/files/contact_choices.inc";
   std::string budget_docs = SAS_DOCS_DIR "/contact-budget.md";
+  std::string materials = SAS_SOURCE_DIR "/textures/materials";
 };
 
 double Seconds(Clock::time_point a, Clock::time_point b) {
@@ -546,6 +547,8 @@ int ParseArgs(int argc, char** argv, Options& o) {
                "choose each shipped material's contact policy from the error budget; writes the "
                "table (--table) and docs/contact-budget.md (--budget-docs)");
   app.add_option("--table", o.table, "the generated table (--choose; -: not written)");
+  app.add_option("--materials", o.materials,
+                 "the material files to choose for (--choose; default the shipped ones)");
   app.add_option("--budget-docs", o.budget_docs, "the budget's figures (--choose; -: stdout)");
   app.add_option("--update-readme", o.readme,
                  "put the markdown table between this file's bench markers");
@@ -1029,7 +1032,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (opt.choose) {
-    return sas::bench::RunChoose({SAS_SOURCE_DIR "/textures/materials", opt.table, opt.budget_docs, opt.reps});
+    return sas::bench::RunChoose({opt.materials, opt.table, opt.budget_docs, opt.reps});
   }
   const auto bench_start = Clock::now();
 

@@ -67,6 +67,11 @@ struct SchemeResult {
   std::string coarser_fails;  // what the rung before the chosen one misses
 };
 
+// A policy's cost on the budget strokes (CostOf).
+struct Cost {
+  double ns_per_sample = 0.0;
+  double substeps_per_sample = 0.0;
+};
 struct MaterialResult {
   kiosk::Material material;
   std::vector<kiosk::StrokeReference> reference;
@@ -78,8 +83,17 @@ struct MaterialResult {
   double builtin_ns_per_sample = 0.0;  // the built-in policy (default scheme, 136 / 4)
   double builtin_substeps_per_sample = 0.0;
   // Where the cheapest policy meeting the budget costs more than the ceiling: which it is and
-  // what it costs (the material then keeps the built-in policy).
+  // what it costs.
   std::string over_ceiling;
+  // Where none met the budget within the ceiling: the first rung of the default scheme's ladder
+  // that meets the impact budget (if the built-in does), every stroke budget the built-in meets and
+  // is no further off than the built-in on the others (NoFurtherOff), within the ceiling. The
+  // material runs it, and its row says it does not meet the budget. At the latest it is the
+  // built-in policy itself (on the ladder, 136 / 4).
+  int fallback = -1;
+  kiosk::ContactPolicy fallback_policy;
+  std::vector<StrokeBudgetFigures> builtin_figures, fallback_figures;
+  Cost fallback_cost;
 };
 
 // A choice may cost at most this many times the built-in policy on the budget strokes, in CPU
@@ -142,11 +156,7 @@ std::string FailText(const std::vector<StrokeBudgetFigures>& f,
 }
 
 // Cost: thread CPU time of every budget stroke (one run each, best of `reps`) per sample, and
-// the contact sub-steps per sample.
-struct Cost {
-  double ns_per_sample = 0.0;
-  double substeps_per_sample = 0.0;
-};
+// the contact sub-steps per sample (Cost, above).
 Cost CostOf(const synth::MaterialParams& params, int reps) {
   double seconds = 0.0, frames = 0.0, substeps = 0.0, samples = 0.0;
   for (const auto& stroke : kiosk::BudgetStrokes()) {
@@ -288,17 +298,23 @@ void WriteTable(const std::string& path, const std::vector<MaterialResult>& resu
          "Regenerate:\n// cmake --build build --target regenerate_contact_choices. The figures "
          "behind each row: docs/contact-budget.md.\n"
          "// {material, probe mass kg, k, mu, alpha, scheme, sub-steps per contact at 1 m/s, "
-         "held pressed, fixed sub-steps (0: adaptive), held is also the floor while rubbing}\n";
+         "held pressed, fixed sub-steps (0: adaptive), held is also the floor while rubbing, meets "
+         "the budget (false: no policy does within the cost ceiling; this one is as close as the "
+         "built-in)}\n";
   for (const auto& m : results) {
-    if (m.best < 0) continue;
-    const auto& s = m.schemes[static_cast<std::size_t>(m.best)];
+    if (m.best < 0 && m.fallback < 0) continue;
     const auto& p = m.material.params;
-    const auto& policy = s.ladder[static_cast<std::size_t>(s.chosen)];
+    const auto& policy =
+        m.best >= 0 ? m.schemes[static_cast<std::size_t>(m.best)]
+                          .ladder[static_cast<std::size_t>(
+                              m.schemes[static_cast<std::size_t>(m.best)].chosen)]
+                    : m.fallback_policy;
     out << "{\"" << m.material.name << "\", " << G17(p.probe.mass_kg) << ", "
         << G17(p.impact.stiffness) << ", " << G17(p.impact.dissipation_s_per_m) << ", "
-        << G17(p.impact.shape_alpha) << ", " << SchemeEnum(s.scheme) << ", "
+        << G17(p.impact.shape_alpha) << ", " << SchemeEnum(policy.scheme) << ", "
         << G17(policy.target_contact_samples) << ", " << policy.sustained_substeps << ", "
-        << policy.oversample << ", " << (policy.pressed_floor ? "true" : "false") << "},\n";
+        << policy.oversample << ", " << (policy.pressed_floor ? "true" : "false") << ", "
+        << (m.best >= 0 ? "true" : "false") << "},\n";
   }
   std::ofstream(path) << out.str();
   std::printf("wrote %s\n", path.c_str());
@@ -502,16 +518,41 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
   md << "---|\n";
   for (const auto& m : results) {
     if (m.best < 0) {
+      const std::string builtin_name =
+          SchemeName(synth::kDefaultContactScheme) + " " +
+          G17(synth::TargetContactSamples(synth::kDefaultContactScheme)) + " / " +
+          std::to_string(synth::kSustainedContactSubsteps);
       md << "| " << m.material.name << " | "
          << (m.over_ceiling.empty()
                  ? std::string("none met the budget")
                  : "none met the budget within the cost ceiling (the cheapest that does: " +
                        m.over_ceiling + ")")
-         << ": the built-in policy ("
-         << SchemeName(synth::kDefaultContactScheme) << ", "
-         << G17(synth::TargetContactSamples(synth::kDefaultContactScheme)) << " / "
-         << synth::kSustainedContactSubsteps << ") stays, and misses it: "
-         << (m.builtin_fails.empty() ? "nothing" : m.builtin_fails) << " |\n";
+         << "; the built-in policy (" << builtin_name << ") misses it: "
+         << (m.builtin_fails.empty() ? "nothing" : m.builtin_fails) << ". ";
+      if (m.fallback < 0) {
+        md << "No rung is as close as the built-in within the ceiling: the built-in stays. |\n";
+        continue;
+      }
+      char cost[160];
+      std::snprintf(cost, sizeof cost,
+                    "%.0f ns and %.2f sub-steps per sample, against the built-in's %.0f and %.2f",
+                    m.fallback_cost.ns_per_sample, m.fallback_cost.substeps_per_sample,
+                    m.builtin_ns_per_sample, m.builtin_substeps_per_sample);
+      md << "It runs the first rung as close to the reference as the built-in on every stroke "
+            "(within the budget where the built-in is, no further off where it is not): "
+         << SchemeName(synth::kDefaultContactScheme) << " "
+         << kiosk::PolicyName(m.fallback_policy) << ", " << cost << "; its errors, then the "
+         << "built-in's: ";
+      const auto all = AllStrokes();
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        const auto& f = m.fallback_figures[k];
+        const auto& b = m.builtin_figures[k];
+        md << (k ? "; " : "") << strokes[k].Name() << " " << WithError(f.sound_db, f.sound_se)
+           << " / " << WithError(f.haptic_db, f.haptic_se) << " ("
+           << WithError(b.sound_db, b.sound_se) << " / " << WithError(b.haptic_db, b.haptic_se)
+           << ")";
+      }
+      md << " |\n";
       continue;
     }
     const auto& s = m.schemes[static_cast<std::size_t>(m.best)];
@@ -580,9 +621,48 @@ int RunChoose(const ChooseOptions& options) {
       m.best = -1;
     }
     if (m.best < 0) {
-      const auto& params = builtin;
       const auto all = AllStrokes();
-      m.builtin_fails = FailText(Compare(params, m.reference, all, false), all);
+      m.builtin_figures = Compare(builtin, m.reference, all, false);
+      m.builtin_fails = FailText(m.builtin_figures, all);
+      const bool builtin_impact = kiosk::MeasureImpactBudget(builtin, kPhaseStride).Meets();
+      const auto ladder = kiosk::PolicyLadder(synth::kDefaultContactScheme);
+      for (std::size_t i = 0; i < ladder.size(); ++i) {
+        const auto params = kiosk::WithPolicy(m.material.params, ladder[i]);
+        if (builtin_impact && !kiosk::MeasureImpactBudget(params, kPhaseStride).Meets()) continue;
+        std::vector<StrokeBudgetFigures> figures;
+        for (const std::size_t k : all) {
+          figures.push_back(kiosk::CompareLevels(
+              kiosk::MeasureStrokeLevels(params, kiosk::BudgetStrokes()[k]), m.reference[k].fine));
+          if (!kiosk::NoFurtherOff(figures.back(), m.builtin_figures[k])) break;
+        }
+        if (figures.size() < all.size() ||
+            !kiosk::NoFurtherOff(figures.back(), m.builtin_figures[all.back()])) {
+          const auto& f = figures.back();
+          const auto& b = m.builtin_figures[figures.size() - 1];
+          std::printf("  %s %s: further off than the built-in on %s: %+.2f / %+.2f dB (%+.2f / "
+                      "%+.2f)\n",
+                      name.c_str(), kiosk::PolicyName(ladder[i]).c_str(),
+                      kiosk::BudgetStrokes()[figures.size() - 1].Name().c_str(), f.sound_db,
+                      f.haptic_db, b.sound_db, b.haptic_db);
+          continue;
+        }
+        const Cost cost = CostOf(params, options.reps);
+        // The rungs after it cost more still (the ladder is coarsest first).
+        if (cost.ns_per_sample > kCostCeiling * m.builtin_ns_per_sample ||
+            cost.substeps_per_sample > kCostCeiling * m.builtin_substeps_per_sample) {
+          break;
+        }
+        m.fallback = static_cast<int>(i);
+        m.fallback_policy = ladder[i];
+        m.fallback_figures = std::move(figures);
+        m.fallback_cost = cost;
+        break;
+      }
+      std::printf("%s: no policy meets the budget within the cost ceiling; %s\n", name.c_str(),
+                  m.fallback >= 0 ? ("as close as the built-in: " +
+                                     kiosk::PolicyName(m.fallback_policy))
+                                        .c_str()
+                                  : "none is as close as the built-in");
     }
   };
   // Two materials at a time (the build machine has two cores); each is independent.
@@ -603,7 +683,9 @@ int RunChoose(const ChooseOptions& options) {
   }
   // A material over the cost ceiling is a finding the docs report, not a failure of the tool.
   return std::all_of(results.begin(), results.end(),
-                     [](const auto& m) { return m.best >= 0 || !m.over_ceiling.empty(); })
+                     [](const auto& m) {
+                       return m.best >= 0 || (!m.over_ceiling.empty() && m.fallback >= 0);
+                     })
              ? 0
              : 1;
 }
