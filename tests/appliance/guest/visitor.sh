@@ -581,7 +581,7 @@ fi
 apt-get remove -y -q sketch-a-scratch >"$out/remove.log" 2>&1
 judge remove_keeps_config "$config" test -f "$config"
 judge remove_keeps_counters "$counters" test -f "$counters"
-judge remove_keeps_staff_texture "$staff_dir/$staff_key" test "$(staff_sha)" = "$sha_staff"
+judge remove_keeps_staff_texture "$staff_dir/$staff_key" test -n "$sha_staff" -a "$(staff_sha)" = "$sha_staff"
 judge remove_removes_binary "/usr/bin/sketch-a-scratch" test ! -e /usr/bin/sketch-a-scratch
 judge remove_removes_metrics_link "node-exporter publishes no stopped kiosk's metrics" \
   test ! -e /var/lib/prometheus/node-exporter/sketch_a_scratch.prom -a ! -L /var/lib/prometheus/node-exporter/sketch_a_scratch.prom
