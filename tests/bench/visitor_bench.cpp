@@ -76,6 +76,9 @@ struct Texture {
   std::string name;
   surface::LoadedTexture loaded;
   synth::MaterialParams material;
+  // Where its contact policy came from: contact_bench's table (meeting the error budget, or not:
+  // docs/contact-budget.md) or the built-in one.
+  std::string policy_source;
   synth::OutputParams output;
   double relief_m = 0.0;  // the kiosk's penetration at full pressure
 };
@@ -332,7 +335,11 @@ std::vector<Texture> LoadKioskTextures(const std::string& folder, const std::str
     t.loaded =
         surface::LoadTexture((std::filesystem::path(folder) / key / "texture.toml").string());
     t.name = t.loaded.file.name;
-    t.material = kiosk::FindMaterial(t.loaded.file.material, dirs).params;
+    const kiosk::Material material = kiosk::FindMaterial(t.loaded.file.material, dirs);
+    t.material = material.params;
+    t.policy_source = !material.contact_from_benchmark ? "built-in"
+                      : material.contact_budget_met    ? "benchmark"
+                                                       : "benchmark, budget not met";
     t.output = kiosk::KioskOutputParams(config, t.loaded.file.gains);
     t.relief_m = surface::ReliefM(*t.loaded.field);
     textures.push_back(std::move(t));
@@ -376,7 +383,7 @@ Summary MeasureTexture(const Texture& tex, const std::vector<kiosk::VisitorStrok
   s.oversample = scene.contact_oversample();
   s.scheme = std::string(kiosk::ContactSchemeName(scene.contact_scheme())) +
              (scene.adaptive_oversample() ? " ×1–×" : " ×") + std::to_string(s.oversample) +
-             (scene.adaptive_oversample() ? " adaptive" : "");
+             (scene.adaptive_oversample() ? " adaptive" : "") + " (" + tex.policy_source + ")";
   std::vector<double> tails;
   double worst = -1.0;
   std::uint64_t hash = 1469598103934665603ull;
@@ -466,7 +473,8 @@ std::string VisitorMarkdown(const Options& opt, const std::vector<Summary>& summ
         "profile (penetration threshold applied, micro-roughness excluded) is nonzero — the probe "
         "feels the texture. Sub-steps: share of pen-down samples by contact sub-steps per sample "
         "(×0: the probe parked). Scheme: the contact scheme the scene runs and its sub-steps per "
-        "sample (adaptive: chosen per compression). Slowest block: the pen-down 128-frame block "
+        "sample (adaptive: chosen per compression), and where it comes from (benchmark: "
+        "contact_bench's table, docs/contact-budget.md). Slowest block: the pen-down 128-frame block "
         "with the most CPU time (each block's best over the repetitions), in % of that block's "
         "2.67 ms; 64 frames: the same with the stroke rendered in 64-frame blocks (1.33 ms), "
         "timed in the same rounds; the audio callback must stay under 100 %. Ring-out: the "
