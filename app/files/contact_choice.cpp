@@ -34,7 +34,7 @@ const ContactChoice* FindContactChoice(std::string_view name, const synth::Mater
   return nullptr;
 }
 
-bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
+const ContactChoice* ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
   const ContactChoice* row = FindContactChoice(name, params);
   params.impact.oversample = 0;
   if (row == nullptr) {
@@ -42,14 +42,14 @@ bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params) {
     params.impact.target_contact_samples = 0.0;
     params.impact.sustained_substeps = 0;
     params.impact.pressed_floor = false;
-    return false;
+    return nullptr;
   }
   params.impact.scheme = row->scheme;
   params.impact.oversample = row->oversample;
   params.impact.target_contact_samples = row->target_contact_samples;
   params.impact.sustained_substeps = row->sustained_substeps;
   params.impact.pressed_floor = row->pressed_floor;
-  return true;
+  return row;
 }
 
 std::string ContactPolicyText(const synth::MaterialParams& params, bool from_benchmark,

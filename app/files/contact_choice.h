@@ -34,9 +34,9 @@ std::span<const ContactChoice> ContactChoices();
 
 // The row for `name` measured on these parameters, or null.
 const ContactChoice* FindContactChoice(std::string_view name, const synth::MaterialParams& params);
-// Sets params' scheme and policy from the row (automatic oversampling); false (and the default
-// scheme with its built-in policy) when there is none.
-bool ApplyContactChoice(std::string_view name, synth::MaterialParams& params);
+// Sets params' scheme and policy from the row (automatic oversampling) and returns the row; null
+// (and the default scheme with its built-in policy) when there is none.
+const ContactChoice* ApplyContactChoice(std::string_view name, synth::MaterialParams& params);
 
 // One line naming the contact scheme and sub-steps a material runs, e.g. "discrete_gradient,
 // adaptive 1-4 sub-steps (12 per contact at 1 m/s, 4 held), chosen by contact_bench"; with

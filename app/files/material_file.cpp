@@ -319,8 +319,8 @@ Material ParseMaterial(const std::string& text, const std::string& source_name,
              material.params.impact, source_name);
   if (const auto* scheme = RequireTable(root, "impact", source_name).get("scheme");
       scheme != nullptr && scheme->value<std::string>() == std::string(kBenchmarkSchemeName)) {
-    material.contact_from_benchmark = ApplyContactChoice(name, material.params);
-    const ContactChoice* row = FindContactChoice(name, material.params);
+    const ContactChoice* row = ApplyContactChoice(name, material.params);
+    material.contact_from_benchmark = row != nullptr;
     material.contact_budget_met = row != nullptr && row->budget_met;
   }
   const toml::table& friction = RequireTable(root, "friction", source_name);

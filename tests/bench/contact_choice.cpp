@@ -53,6 +53,12 @@ struct StyleResult {
   int rung = 0;  // index into PolicyLadder
 };
 
+// A policy's cost on the budget strokes (CostOf).
+struct Cost {
+  double ns_per_sample = 0.0;
+  double substeps_per_sample = 0.0;
+};
+
 struct SchemeResult {
   synth::ContactScheme scheme{};
   std::vector<ContactPolicy> ladder;
@@ -62,16 +68,10 @@ struct SchemeResult {
   StyleResult styles[3];
   int chosen = 0;
   std::vector<StrokeBudgetFigures> chosen_figures;  // every budget stroke at the chosen policy
-  double ns_per_sample = 0.0;                       // the budget strokes at the chosen policy
-  double substeps_per_sample = 0.0;                 // the same, contact sub-steps
+  Cost cost;                                        // the budget strokes at the chosen policy
   std::string coarser_fails;  // what the rung before the chosen one misses
 };
 
-// A policy's cost on the budget strokes (CostOf).
-struct Cost {
-  double ns_per_sample = 0.0;
-  double substeps_per_sample = 0.0;
-};
 struct MaterialResult {
   kiosk::Material material;
   std::vector<kiosk::StrokeReference> reference;
@@ -80,8 +80,7 @@ struct MaterialResult {
   // Where no policy met the budget: what the built-in policy (which the material then keeps)
   // misses.
   std::string builtin_fails;
-  double builtin_ns_per_sample = 0.0;  // the built-in policy (default scheme, 136 / 4)
-  double builtin_substeps_per_sample = 0.0;
+  Cost builtin_cost;  // the built-in policy (default scheme, 136 / 4)
   // Where the cheapest policy meeting the budget costs more than the ceiling: which it is and
   // what it costs.
   std::string over_ceiling;
@@ -107,17 +106,29 @@ struct MaterialResult {
 // block 58 % of its period).
 constexpr double kCostCeiling = 2.0;
 
+bool OverCeiling(const Cost& cost, const Cost& builtin) {
+  return cost.ns_per_sample > kCostCeiling * builtin.ns_per_sample ||
+         cost.substeps_per_sample > kCostCeiling * builtin.substeps_per_sample;
+}
+
+// Whether stroke i's figures miss: the budget, or with a `baseline` (figures of every stroke),
+// being as close as it (NoFurtherOff).
+bool Misses(const StrokeBudgetFigures& f, std::size_t i,
+            const std::vector<StrokeBudgetFigures>* baseline) {
+  return baseline ? !kiosk::NoFurtherOff(f, (*baseline)[i]) : !kiosk::MeetsLevelBudget(f);
+}
+
 // The budget figures of `params` on the strokes `which`; with `stop_at_miss`, only up to the first
 // stroke that misses (a rung that misses one is not taken: the rest is not needed).
 std::vector<StrokeBudgetFigures> Compare(const synth::MaterialParams& params,
                                          const std::vector<kiosk::StrokeReference>& reference,
-                                         const std::vector<std::size_t>& which,
-                                         bool stop_at_miss) {
+                                         const std::vector<std::size_t>& which, bool stop_at_miss,
+                                         const std::vector<StrokeBudgetFigures>* baseline = nullptr) {
   std::vector<StrokeBudgetFigures> out;
   for (std::size_t i : which) {
     out.push_back(kiosk::CompareLevels(
         kiosk::MeasureStrokeLevels(params, kiosk::BudgetStrokes()[i]), reference[i].fine));
-    if (stop_at_miss && !kiosk::MeetsLevelBudget(out.back())) break;
+    if (stop_at_miss && Misses(out.back(), i, baseline)) break;
   }
   return out;
 }
@@ -262,13 +273,11 @@ SchemeResult ChooseForScheme(const kiosk::Material& material, synth::ContactSche
                       (text.empty() ? std::string("nothing (the ladder is not monotone here)")
                                     : text);
   }
-  const Cost cost =
+  r.cost =
       CostOf(kiosk::WithPolicy(material.params, r.ladder[static_cast<std::size_t>(r.chosen)]), reps);
-  r.ns_per_sample = cost.ns_per_sample;
-  r.substeps_per_sample = cost.substeps_per_sample;
   std::printf("    all styles: %s, %.0f ns and %.2f sub-steps per sample\n",
               kiosk::PolicyName(r.ladder[static_cast<std::size_t>(r.chosen)]).c_str(),
-              r.ns_per_sample, r.substeps_per_sample);
+              r.cost.ns_per_sample, r.cost.substeps_per_sample);
   return r;
 }
 
@@ -488,8 +497,8 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
          << (s.impact_rung >= 0 ? name(s.impact_rung) : std::string("none"));
       for (const auto& st : s.styles) md << " | " << (st.found ? name(st.rung) : "-");
       md << " | " << (s.found ? name(s.chosen) : "none") << " | "
-         << (s.found ? std::to_string(static_cast<int>(std::lround(s.ns_per_sample))) : "-")
-         << " | " << (s.found ? Fixed(s.substeps_per_sample, 2).substr(1) : "-") << " | "
+         << (s.found ? std::to_string(static_cast<int>(std::lround(s.cost.ns_per_sample))) : "-")
+         << " | " << (s.found ? Fixed(s.cost.substeps_per_sample, 2).substr(1) : "-") << " | "
          << (s.impact_rung >= 0 ? Sci(s.impact.worst_relative) : "-") << " |\n";
     }
   }
@@ -503,8 +512,8 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
      << G17(synth::TargetContactSamples(synth::kDefaultContactScheme)) << " / "
      << synth::kSustainedContactSubsteps << "), for comparison:";
   for (const auto& m : results) {
-    md << " " << m.material.name << " " << std::lround(m.builtin_ns_per_sample) << " ns, "
-       << Fixed(m.builtin_substeps_per_sample, 2).substr(1) << " sub-steps"
+    md << " " << m.material.name << " " << std::lround(m.builtin_cost.ns_per_sample) << " ns, "
+       << Fixed(m.builtin_cost.substeps_per_sample, 2).substr(1) << " sub-steps"
        << (&m == &results.back() ? "." : ",");
   }
   md << "\n\n## The chosen policies against the reference\n\n"
@@ -537,7 +546,7 @@ std::string Markdown(const std::vector<MaterialResult>& results, int reps) {
       std::snprintf(cost, sizeof cost,
                     "%.0f ns and %.2f sub-steps per sample, against the built-in's %.0f and %.2f",
                     m.fallback_cost.ns_per_sample, m.fallback_cost.substeps_per_sample,
-                    m.builtin_ns_per_sample, m.builtin_substeps_per_sample);
+                    m.builtin_cost.ns_per_sample, m.builtin_cost.substeps_per_sample);
       md << "It runs the first rung as close to the reference as the built-in on every stroke "
             "(within the budget where the built-in is, no further off where it is not): "
          << SchemeName(synth::kDefaultContactScheme) << " "
@@ -587,36 +596,34 @@ int RunChoose(const ChooseOptions& options) {
                   r.old_reference.sound_db, r.old_reference.haptic_db);
       std::fflush(stdout);
     }
-    double best_ns = 0.0;
     for (const auto scheme : kCandidates) {
       m.schemes.push_back(ChooseForScheme(m.material, scheme, m.reference, options.reps));
       const auto& s = m.schemes.back();
-      if (s.found && (m.best < 0 || s.ns_per_sample < best_ns)) {
+      if (s.found && (m.best < 0 || s.cost.ns_per_sample <
+                                        m.schemes[static_cast<std::size_t>(m.best)]
+                                            .cost.ns_per_sample)) {
         m.best = static_cast<int>(m.schemes.size() - 1);
-        best_ns = s.ns_per_sample;
       }
       std::printf("%s: %s done\n", name.c_str(), SchemeName(scheme).c_str());
       std::fflush(stdout);
     }
     const auto builtin =
         kiosk::WithPolicy(m.material.params, {synth::kDefaultContactScheme, 0, 0, 0});
-    const Cost builtin_cost = CostOf(builtin, options.reps);
-    m.builtin_ns_per_sample = builtin_cost.ns_per_sample;
-    m.builtin_substeps_per_sample = builtin_cost.substeps_per_sample;
-    const double best_substeps =
-        m.best >= 0 ? m.schemes[static_cast<std::size_t>(m.best)].substeps_per_sample : 0.0;
-    if (m.best >= 0 && (best_ns > kCostCeiling * m.builtin_ns_per_sample ||
-                        best_substeps > kCostCeiling * m.builtin_substeps_per_sample)) {
+    m.builtin_cost = CostOf(builtin, options.reps);
+    if (m.best >= 0 &&
+        OverCeiling(m.schemes[static_cast<std::size_t>(m.best)].cost, m.builtin_cost)) {
       const auto& s = m.schemes[static_cast<std::size_t>(m.best)];
+      const auto& b = m.builtin_cost;
       char text[240];
       std::snprintf(text, sizeof text,
                     "%s %s, %.0f ns and %.2f sub-steps per sample (%.1fx and %.1fx the "
                     "built-in's %.0f and %.2f)",
                     SchemeName(s.scheme).c_str(),
                     kiosk::PolicyName(s.ladder[static_cast<std::size_t>(s.chosen)]).c_str(),
-                    best_ns, best_substeps, best_ns / m.builtin_ns_per_sample,
-                    best_substeps / m.builtin_substeps_per_sample, m.builtin_ns_per_sample,
-                    m.builtin_substeps_per_sample);
+                    s.cost.ns_per_sample, s.cost.substeps_per_sample,
+                    s.cost.ns_per_sample / b.ns_per_sample,
+                    s.cost.substeps_per_sample / b.substeps_per_sample, b.ns_per_sample,
+                    b.substeps_per_sample);
       m.over_ceiling = text;
       m.best = -1;
     }
@@ -629,29 +636,21 @@ int RunChoose(const ChooseOptions& options) {
       for (std::size_t i = 0; i < ladder.size(); ++i) {
         const auto params = kiosk::WithPolicy(m.material.params, ladder[i]);
         if (builtin_impact && !kiosk::MeasureImpactBudget(params, kPhaseStride).Meets()) continue;
-        std::vector<StrokeBudgetFigures> figures;
-        for (const std::size_t k : all) {
-          figures.push_back(kiosk::CompareLevels(
-              kiosk::MeasureStrokeLevels(params, kiosk::BudgetStrokes()[k]), m.reference[k].fine));
-          if (!kiosk::NoFurtherOff(figures.back(), m.builtin_figures[k])) break;
-        }
-        if (figures.size() < all.size() ||
-            !kiosk::NoFurtherOff(figures.back(), m.builtin_figures[all.back()])) {
-          const auto& f = figures.back();
-          const auto& b = m.builtin_figures[figures.size() - 1];
+        auto figures = Compare(params, m.reference, all, true, &m.builtin_figures);
+        const std::size_t last = figures.size() - 1;
+        if (Misses(figures[last], last, &m.builtin_figures)) {
+          const auto& f = figures[last];
+          const auto& b = m.builtin_figures[last];
           std::printf("  %s %s: further off than the built-in on %s: %+.2f / %+.2f dB (%+.2f / "
                       "%+.2f)\n",
                       name.c_str(), kiosk::PolicyName(ladder[i]).c_str(),
-                      kiosk::BudgetStrokes()[figures.size() - 1].Name().c_str(), f.sound_db,
+                      kiosk::BudgetStrokes()[last].Name().c_str(), f.sound_db,
                       f.haptic_db, b.sound_db, b.haptic_db);
           continue;
         }
         const Cost cost = CostOf(params, options.reps);
         // The rungs after it cost more still (the ladder is coarsest first).
-        if (cost.ns_per_sample > kCostCeiling * m.builtin_ns_per_sample ||
-            cost.substeps_per_sample > kCostCeiling * m.builtin_substeps_per_sample) {
-          break;
-        }
+        if (OverCeiling(cost, m.builtin_cost)) break;
         m.fallback = static_cast<int>(i);
         m.fallback_policy = ladder[i];
         m.fallback_figures = std::move(figures);

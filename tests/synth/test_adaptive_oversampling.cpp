@@ -48,6 +48,24 @@ ImpactParams Automatic(const Contact& c) {
   return p;
 }
 
+// A 5 g nib (k = 1e8, the metal's) on a three-mode plate, with the metal's friction and the
+// automatic oversampling.
+MaterialParams NibOnPlate() {
+  MaterialParams m;
+  m.resonator.mode_count = 3;
+  m.resonator.modes[0] = ModeParams{337.0, 1.2, 0.34, 0.5};
+  m.resonator.modes[1] = ModeParams{683.0, 0.6, 0.54, 0.8};
+  m.resonator.modes[2] = ModeParams{1004.0, 0.4, 1.1, -0.5};
+  m.probe.mass_kg = 0.005;
+  m.impact.enabled = true;
+  m.impact.stiffness = 1e8;
+  m.impact.shape_alpha = 1.5;
+  m.impact.dissipation_s_per_m = 0.15;
+  m.impact.oversample = 0;
+  m.friction = test::MetalFriction();
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -108,18 +126,7 @@ TEST_CASE(
     "adaptive oversampling: a pen resting and sliding on a flat plate runs one sub-step per "
     "sample, a tap at 0.3 m/s runs more",
     "[dsp][render]") {
-  MaterialParams m;
-  m.resonator.mode_count = 3;
-  m.resonator.modes[0] = ModeParams{337.0, 1.2, 0.34, 0.5};
-  m.resonator.modes[1] = ModeParams{683.0, 0.6, 0.54, 0.8};
-  m.resonator.modes[2] = ModeParams{1004.0, 0.4, 1.1, -0.5};
-  m.probe.mass_kg = 0.005;
-  m.impact.enabled = true;
-  m.impact.stiffness = 1e8;
-  m.impact.shape_alpha = 1.5;
-  m.impact.dissipation_s_per_m = 0.15;
-  m.impact.oversample = 0;
-  m.friction = test::MetalFriction();
+  MaterialParams m = NibOnPlate();
   Scene scene;
   scene.Init(kFs);
   scene.Prepare(m, OutputParams{}, HeightFieldView{});  // flat: no profile
@@ -218,19 +225,8 @@ TEST_CASE(
     "adaptive oversampling with the pressed floor: a pen dragged slowly over a plate gets the held "
     "count on every pressed sample while friction acts, and one sub-step when it rolls",
     "[dsp][render]") {
-  MaterialParams m;
-  m.resonator.mode_count = 3;
-  m.resonator.modes[0] = ModeParams{337.0, 1.2, 0.34, 0.5};
-  m.resonator.modes[1] = ModeParams{683.0, 0.6, 0.54, 0.8};
-  m.resonator.modes[2] = ModeParams{1004.0, 0.4, 1.1, -0.5};
-  m.probe.mass_kg = 0.005;
-  m.impact.enabled = true;
-  m.impact.stiffness = 1e8;
-  m.impact.shape_alpha = 1.5;
-  m.impact.dissipation_s_per_m = 0.15;
-  m.impact.oversample = 0;
+  MaterialParams m = NibOnPlate();
   m.impact.sustained_substeps = 8;
-  m.friction = test::MetalFriction();
   // Counts of the sub-steps a settled pen sliding at 3 cm/s gets, for each sample in contact.
   auto slide = [&](bool floor, ProbeStyle style) {
     MaterialParams params = m;
