@@ -220,7 +220,10 @@ struct ContactStepInput {
   double coupling = 0.0;           // resonator compliance Σ b1 (0 for a rigid body)
   double free_du = 0.0;
   double z0 = 0.0;
-  double friction_normal_n = 0.0;  // f_N seen by the friction (≥ 0)
+  double friction_normal_n = 0.0;  // f_N seen by the friction (≥ 0; 0: no friction this step)
+  // > 0: the discrete-gradient solve of a closed, sliding step loads the friction with this share
+  // of the step's own normal force instead of friction_normal_n (SolveClosedSlidingStep).
+  double friction_load_share = 0.0;
   double noise_n = 0.0;            // σ3 w for this step
   double friction_guess_n = 0.0;   // friction force of the previous step (start of the solve)
   double slip_slope_guess = 0.0;  // slope of the slip residual found by the previous step (0: none)

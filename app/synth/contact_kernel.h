@@ -253,11 +253,14 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
         .coupling = sub_compliance,
         .free_du = drive.slide_velocity_mps * h - free_resonator,
         .z0 = probe.bristle_m,
-        // With the impact on, friction sees the normal force of the previous sub-step (explicit
-        // in f_N only: the friction step stays passive for any f_N >= 0).
+        // With the impact on, whether friction acts (and the general solve's load) follows the
+        // normal force of the previous sub-step; a closed, sliding step loads it with its own
+        // normal force (friction_load_share). Either way the friction step stays passive: it is
+        // for any f_N >= 0.
         .friction_normal_n =
             drive.friction_share *
             (impact_on ? (probe.normal_n > 0.0 ? probe.normal_n : 0.0) : drive.push_n),
+        .friction_load_share = impact_on ? drive.friction_share : 0.0,
         .noise_n = drive.noise_n,
         .friction_guess_n = probe.friction_n,
         .slip_slope_guess = probe.slip_slope,

@@ -26,9 +26,8 @@ constexpr bool kEveryMaterial = true;
 #endif
 
 // The materials contact_bench --choose found no budget-meeting policy for within its cost
-// ceiling (glass: 34 / 8 floor, eight sub-steps on every pressed, rubbing sample: 2.3 times the
-// built-in policy's sub-steps and CPU time on the budget strokes, 3.3 times its visitor strokes).
-bool IsOverCostCeiling(const std::string& name) { return name == "glass"; }
+// ceiling: none of the shipped ones. A material added here runs the fallback row's checks below.
+bool IsOverCostCeiling(const std::string& /*name*/) { return false; }
 
 std::vector<kiosk::Material> ShippedMaterials() {
   for (const auto& dir : kiosk::MaterialSearchDirs("")) {

@@ -55,9 +55,9 @@ constexpr double kHapticMatchDb = kMatchDb;
 constexpr double kLimitedMatchDb = 5.0;
 // The transducer's default gain drives the strong strokes into its limiter, which flattens the
 // textures whose vibration is peakiest (the felt cracks and bubbles: crest factors of 13-17 dB
-// over the visitor population) the most: 9.67 dB measured (the narrowest scrape at 80 mm/s,
-// p0.6, broken glass against cracked ground).
-constexpr double kLimitedHapticMatchDb = 10.0;
+// over the visitor population) the most: 10.03 dB measured (the narrowest scrape at 80 mm/s,
+// p0.6, broken glass against cracked ground), plus 0.5 dB.
+constexpr double kLimitedHapticMatchDb = 10.5;
 // The grid check plays a prefix of the calibration's sequence (a stroke's level holds a little of
 // the ring of the stroke before it, so only the calibration's own order reproduces its levels):
 // the narrowest scrape's 12 points, 144 strokes per texture, in ~15 s; the sanitizer build (~10x
@@ -306,7 +306,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "with the kiosk's default gains the grid strokes stay within 5 dB (vibration 10) where the "
+    "with the kiosk's default gains the grid strokes stay within 5 dB (vibration 10.5) where the "
     "correction is "
     "within its limit (the soft limiters compress the peakier textures' loudest strokes more) and "
     "the held-out strokes within their bounds",

@@ -350,3 +350,52 @@ TEST_CASE(
   // The cutoff is reached (else the comparison would not test the skip).
   CHECK(skipped > compared / 4);
 }
+
+TEST_CASE(
+    "a closed, sliding discrete-gradient step loads the friction with its own normal force, and "
+    "without a load share it uses the previous sub-step's",
+    "[dsp]") {
+  ImpactParams ip;
+  ip.stiffness = 1e8;  // glass's plate, where the lag was heard
+  ip.dissipation_s_per_m = 0.2;
+  ImpactModel impact;
+  impact.Set(ip);
+  FrictionParams fp;
+  fp.bristle_damping = 0.0;   // f = σ0 mean z: the coupling moves the compression by little
+  fp.viscous_friction = 0.0;
+  fp.noise_coefficient = 0.0;
+  FrictionModel friction;
+  friction.Set(fp);
+  const double h = 1.0 / kFs, mass = 0.005, coupling = 1e-8;
+  ContactStepInput in;
+  in.h = h;
+  in.inv_h = kFs;
+  in.x0 = std::pow(1.0 / ip.stiffness, 1.0 / ip.shape_alpha);  // pressed at 1 N
+  in.normal_compliance = coupling + 0.5 * h * h / mass;
+  in.coupling = coupling;
+  // A slip of 50 steady deflections in the step: the bristle ends at z_ss of the load it saw
+  // (the Stribeck term is negligible at this speed: z_ss = μ_d f_N / σ0).
+  in.free_du = 50.0 * fp.dynamic_coefficient * 1.0 / fp.bristle_stiffness;
+  in.friction_normal_n = 0.3;  // the previous sub-step's force (lagging a ringing plate)
+  in.normal_guess_n = 0.3;
+  in.impact_on = true;
+  in.friction_on = true;
+  const auto z_ss = [&](double load) {
+    return fp.dynamic_coefficient * load / fp.bristle_stiffness;
+  };
+  for (const double share : {1.0, 0.5}) {
+    in.friction_load_share = share;
+    const ContactStepOutput out = SolveContactStep(impact, friction, in);
+    INFO("share " << share << " F " << out.normal_n);
+    REQUIRE(out.normal_n > 0.9);
+    // The load is taken at the step's linearised start and held (z_ss fixed keeps the step
+    // passive): within 1e-3 of the step's final normal force, against 0.3 N lagging.
+    CHECK(out.z1 == Approx(z_ss(share * out.normal_n)).epsilon(1e-3));
+    // σ0 times the slip-weighted mean deflection: under z_ss while the bristle first takes up.
+    CHECK(out.friction_n < fp.dynamic_coefficient * share * out.normal_n);
+    CHECK(out.friction_n > 0.9 * fp.dynamic_coefficient * share * out.normal_n);
+  }
+  in.friction_load_share = 0.0;
+  const ContactStepOutput lagged = SolveContactStep(impact, friction, in);
+  CHECK(lagged.z1 == Approx(z_ss(in.friction_normal_n)).epsilon(1e-6));
+}

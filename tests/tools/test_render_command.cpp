@@ -466,15 +466,18 @@ TEST_CASE(
   // glass is not: its material asks for stick-slip squeak (μ_s well above μ_d, a
   // low Stribeck velocity), which comes and goes with speed and pressure (a pen at pressure
   // 0.05-0.1 still squeaks at 100-250 mm/s, up to 13 dB above a firm one).
+  // A squeal is steady; a sliding noise's level wanders by a dB or two over half a second
+  // (plastic, rub, 250 mm/s, pressure 0.15: +1.2 dB over the firm stroke from 0.3 to 0.8 s, +1.4
+  // at ×64 sub-steps, +0.7 from 0.3 to 1.6 s), so the level is taken over 1.3 s.
   sas::test::TempDir dir;
   const double fs = 48000.0;
   const auto steady_db = [&](const char* material, double speed_mm_s, double pressure,
                              double tilt_deg) {
-    const double duration_s = 0.8;
+    const double duration_s = 1.6;
     std::ostringstream csv;
     csv << "t,x,y,pressure,tilt\n";
-    for (int i = 0; i <= 400; ++i) {
-      const double t = duration_s * i / 400.0;
+    for (int i = 0; i <= 800; ++i) {
+      const double t = duration_s * i / 800.0;
       csv << t << ',' << 10.0 + speed_mm_s * t << ",20," << pressure << ',' << tilt_deg << '\n';
     }
     RenderOptions options;
