@@ -864,8 +864,8 @@ namespace {
 // The friction's load is the step's own normal force (friction_load_share of it), taken at the
 // linearised start below and frozen for the iteration (z_ss then stays fixed, so the step stays
 // passive). The previous sub-step's force lags a plate ringing against the tip: on glass
-// (k = 1e8) a rub at 40 mm/s came out +1.2 dB louder than the fine-step reference at one sub-step
-// per sample, +0.3 dB with the step's own force (contact_bench --choose); it costs nothing more.
+// (k = 1e8) the error budget's rub at 40 mm/s came out +1.8 dB louder than the fine-step
+// reference at one sub-step per sample, +0.3 dB with the step's own force; it costs nothing more.
 // Returns false (and the general solve takes over) for a contact that opens or closes within the
 // step, or if the iteration does not settle quickly.
 bool SolveClosedSlidingStep(const ImpactModel& m, const FrictionModel& friction,
