@@ -37,11 +37,15 @@ namespace sas::synth {
 // harder: its lightest, 0.2 N, is 0.1 N of friction load on a tilted rub).
 inline constexpr double kFullViscousLoadN = 0.1;
 
+// Whether ViscousAtLoad scales σ2 for this friction load (below).
+inline bool ViscousScaled(const FrictionModel& friction, double friction_load_n) {
+  return friction_load_n < kFullViscousLoadN && friction.sigma2 > 0.0;
+}
 // `friction`, or its copy made in `light` with σ2 scaled for a friction load under
 // kFullViscousLoadN (only then is a copy made: the audio path's usual case costs nothing).
 inline const FrictionModel& ViscousAtLoad(const FrictionModel& friction, double friction_load_n,
                                           std::optional<FrictionModel>& light) {
-  if (!(friction_load_n < kFullViscousLoadN) || !(friction.sigma2 > 0.0)) return friction;
+  if (!ViscousScaled(friction, friction_load_n)) return friction;
   light.emplace(friction);
   light->sigma2 *= std::cbrt(std::pow(std::max(friction_load_n, 0.0) / kFullViscousLoadN, 2.0));
   return *light;
@@ -129,6 +133,22 @@ struct SampleDrive {
   double friction_share = 1.0;      // style weight of the friction (roll = 0)
   double noise_n = 0.0;             // σ3 w for this sample
 };
+
+// One contact sub-step with the configured scheme (contact.h describes each).
+[[gnu::always_inline]] inline ContactStepOutput SolveContactStepWith(
+    const ContactKernelConfig& config, const FrictionModel& friction, const ContactStepInput& in) {
+  switch (config.scheme) {
+    case ContactScheme::kExplicitPassive:
+      return SolveContactStepExplicit(config.impact, friction, in);
+    case ContactScheme::kTrapezoidNewton:
+      return SolveContactStepTrapezoid(config.impact, friction, in);
+    case ContactScheme::kEnergyQuadratised:
+      return SolveContactStepQuadratised(config.impact, friction, in);
+    case ContactScheme::kDiscreteGradient:
+    default:
+      return SolveContactStep(config.impact, friction, in);
+  }
+}
 
 struct NoObserver {
   void operator()(double, double, double, double, double) const {}
@@ -227,7 +247,6 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
   const bool needs_rate = impact_on && SchemeNeedsCompressionRate(config.scheme);
   const double surface_rate = (drive.surface_end_m - drive.surface_begin_m) * rate;
   double surface = drive.surface_begin_m;
-  std::optional<FrictionModel> light_load;  // ViscousAtLoad's copy, made only when it is needed
   for (int j = 0; j < n; ++j) {
     const double surface_next =
         j + 1 == n ? drive.surface_end_m
@@ -272,23 +291,15 @@ inline void StepContactSample(const ContactKernelConfig& config, ModalState& mod
         .impact_on = impact_on,
         .friction_on = friction_on,
     };
+    // ViscousAtLoad's copy only in the branch that needs it: an optional declared for every
+    // sub-step was cleared (112 bytes, `rep stos`) on each, a pressed stroke's usual case too.
     ContactStepOutput out;
-    const FrictionModel& friction =
-        ViscousAtLoad(config.friction, in.friction_normal_n, light_load);
-    switch (config.scheme) {
-      case ContactScheme::kExplicitPassive:
-        out = SolveContactStepExplicit(config.impact, friction, in);
-        break;
-      case ContactScheme::kTrapezoidNewton:
-        out = SolveContactStepTrapezoid(config.impact, friction, in);
-        break;
-      case ContactScheme::kEnergyQuadratised:
-        out = SolveContactStepQuadratised(config.impact, friction, in);
-        break;
-      case ContactScheme::kDiscreteGradient:
-      default:
-        out = SolveContactStep(config.impact, friction, in);
-        break;
+    if (!ViscousScaled(config.friction, in.friction_normal_n)) {
+      out = SolveContactStepWith(config, config.friction, in);
+    } else {
+      std::optional<FrictionModel> light_load;
+      out = SolveContactStepWith(
+          config, ViscousAtLoad(config.friction, in.friction_normal_n, light_load), in);
     }
 
     // The free motion of the next sub-step (or of the next full sample) comes out of this pass.
